@@ -1,0 +1,52 @@
+# Helpers that keep every module, test and tool built the same way.
+
+# Warnings we hold every target to; see docs/architecture.md ("Build rules").
+set(STEREOSCOUT_WARNINGS -Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wsign-conversion
+    -Wnon-virtual-dtor -Wold-style-cast -Woverloaded-virtual -Werror)
+# FMA contraction changes floating-point results between x86 and aarch64; keeping it off
+# makes a replay on the desk reproduce a run on the robot bit for bit.
+set(STEREOSCOUT_DETERMINISM_FLAGS -ffp-contract=off)
+
+function(stereoscout_target_defaults target)
+  target_compile_options(${target} PRIVATE ${STEREOSCOUT_WARNINGS} ${STEREOSCOUT_DETERMINISM_FLAGS})
+endfunction()
+
+# stereoscout_add_module(<name> SOURCES ... [DEPENDS ...])
+# Creates library stereoscout_<name> (alias stereoscout::<name>) whose public headers live
+# in modules/<name>/include/stereoscout/<name>/.
+function(stereoscout_add_module name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPENDS" ${ARGN})
+  set(target stereoscout_${name})
+  add_library(${target} STATIC ${ARG_SOURCES})
+  add_library(stereoscout::${name} ALIAS ${target})
+  target_include_directories(${target} PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include)
+  target_link_libraries(${target} PUBLIC ${ARG_DEPENDS})
+  stereoscout_target_defaults(${target})
+endfunction()
+
+# stereoscout_add_test(<name> SOURCES ... [DEPENDS ...] [LABELS ...])
+# One GoogleTest executable per module; each TEST becomes its own CTest entry.
+function(stereoscout_add_test name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPENDS;LABELS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_DEPENDS} GTest::gtest GTest::gtest_main)
+  stereoscout_target_defaults(${name})
+  if(NOT ARG_LABELS)
+    set(ARG_LABELS unit)
+  endif()
+  gtest_discover_tests(${name}
+    PROPERTIES LABELS "${ARG_LABELS}"
+               ENVIRONMENT "STEREOSCOUT_DATA_DIR=${STEREOSCOUT_DATA_DIR};STEREOSCOUT_SOURCE_DIR=${PROJECT_SOURCE_DIR}"
+    DISCOVERY_TIMEOUT 60)
+endfunction()
+
+# stereoscout_add_benchmark(<name> SOURCES ... [DEPENDS ...])
+function(stereoscout_add_benchmark name)
+  if(NOT STEREOSCOUT_BUILD_BENCHMARKS)
+    return()
+  endif()
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPENDS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_DEPENDS} benchmark::benchmark)
+  stereoscout_target_defaults(${name})
+endfunction()

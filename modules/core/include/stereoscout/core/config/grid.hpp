@@ -1,0 +1,40 @@
+#pragma once
+// Config section `grid`: the just-in-time maximum-likelihood occupancy grid (paper V).
+#include "stereoscout/core/config.hpp"
+
+namespace stereoscout::core {
+
+struct GridConfig {
+  int width_cells = 700;
+  int height_cells = 700;
+  double resolution_m = 0.10;
+  double final_map_resolution_m = 0.01;
+  double log_odds_hit = 0.85;
+  double log_odds_miss = -0.4;
+  double log_odds_min = -4.0;
+  double log_odds_max = 4.0;
+  double occupied_threshold = 0.65;
+  double free_threshold = 0.196;
+  int cache_capacity = 64;
+  int scan_history = 1024;
+};
+
+inline void describe(ConfigVisitor& v, GridConfig& c) {
+  v.begin_section("grid", "Occupancy grid of the maximum-likelihood particle, kept just in time (paper V).");
+  v.integer_field("width_cells", c.width_cells, {10, 20000, "cells", "Grid width (paper 700)."});
+  v.integer_field("height_cells", c.height_cells, {10, 20000, "cells", "Grid height (paper 700)."});
+  v.number("resolution_m", c.resolution_m, {0.005, 1.0, "m", "Cell size of the navigation grid (paper 0.10)."});
+  v.number("final_map_resolution_m", c.final_map_resolution_m, {0.005, 1.0, "m", "Cell size of the map written at the end of a run (paper 0.01)."});
+  v.number("log_odds_hit", c.log_odds_hit, {0.0, 10.0, "", "Log-odds added to the cell where a ray ends on an obstacle."});
+  v.number("log_odds_miss", c.log_odds_miss, {-10.0, 0.0, "", "Log-odds added to each cell a ray passes through."});
+  v.number("log_odds_min", c.log_odds_min, {-100.0, 0.0, "", "Lower clamp of a cell's log-odds."});
+  v.number("log_odds_max", c.log_odds_max, {0.0, 100.0, "", "Upper clamp of a cell's log-odds."});
+  v.number("occupied_threshold", c.occupied_threshold, {0.0, 1.0, "", "Probability above which a cell is occupied (map.yaml occupied_thresh)."});
+  v.number("free_threshold", c.free_threshold, {0.0, 1.0, "", "Probability below which a cell is free (map.yaml free_thresh)."});
+  v.integer_field("cache_capacity", c.cache_capacity, {2, 100000, "grids", "Grids the just-in-time cache can hold (paper saw 23 at most for 1000 particles)."});
+  v.integer_field("scan_history", c.scan_history, {1, 1000000, "scans", "Depth scans kept for roll-ups."});
+  v.require(c.free_threshold < c.occupied_threshold, "free_threshold", "must be below occupied_threshold");
+  v.end_section();
+}
+
+}  // namespace stereoscout::core

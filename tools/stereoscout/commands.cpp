@@ -1,0 +1,49 @@
+#include "commands.hpp"
+
+#include <unistd.h>
+
+#include <climits>
+#include <fstream>
+
+namespace stereoscout::cli {
+namespace {
+
+constexpr Command kCommands[] = {
+    {"config", "check a config file, print the effective config or the key reference", run_config},
+    {nullptr, nullptr, nullptr},
+};
+
+bool file_exists(const std::string& path) { return std::ifstream(path).good(); }
+
+std::string executable_directory() {
+  char buffer[PATH_MAX];
+  const ssize_t length = ::readlink("/proc/self/exe", buffer, sizeof buffer - 1);
+  if (length <= 0) {
+    return ".";
+  }
+  std::string path(buffer, static_cast<std::size_t>(length));
+  return path.substr(0, path.find_last_of('/'));
+}
+
+}  // namespace
+
+const Command* command_table() { return kCommands; }
+
+std::string resolve_data_path(const std::string& path) {
+  if (path.empty() || path[0] == '/' || file_exists(path)) {
+    return path;
+  }
+  const std::string in_source = std::string(STEREOSCOUT_SOURCE_DIR) + "/" + path;
+  if (file_exists(in_source)) {
+    return in_source;
+  }
+  const std::string installed = executable_directory() + "/../share/stereoscout/" + path;
+  if (file_exists(installed)) {
+    return installed;
+  }
+  return path;
+}
+
+std::string default_config_path() { return resolve_data_path("config/stereoscout.yaml"); }
+
+}  // namespace stereoscout::cli

@@ -1,0 +1,28 @@
+#pragma once
+// The subcommands of `stereoscout`. Adding one: write command_<name>.cpp with a
+// `int run_<name>(int argc, char** argv)`, declare it here and add a row to the table in
+// commands.cpp.
+
+#include <string>
+
+namespace stereoscout::cli {
+
+struct Command {
+  const char* name;
+  const char* summary;
+  int (*run)(int argc, char** argv);  // argv starts after the subcommand name
+};
+
+// The table of subcommands, ending with a row whose name is nullptr.
+const Command* command_table();
+
+// Where to find config/stereoscout.yaml: in the source tree of this build, else beside the
+// installed binary (<prefix>/share/stereoscout/config).
+std::string default_config_path();
+// Resolves a path given in config (a world file, ...) against the source or install tree
+// when it is relative and not found from the current directory.
+std::string resolve_data_path(const std::string& path);
+
+int run_config(int argc, char** argv);
+
+}  // namespace stereoscout::cli
