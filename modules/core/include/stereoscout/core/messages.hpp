@@ -4,6 +4,9 @@
 // reused, so passing a message never allocates.
 
 #include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
 
 #include <opencv2/core/mat.hpp>
 
@@ -38,6 +41,33 @@ struct OdometryReading {
 struct DriveCommand {
   double linear_mps = 0.0;
   double angular_rad_s = 0.0;
+};
+
+// One stereo landmark observation handed from the vision front end to the filter: the
+// identity the descriptor index gave it, and its 3D point with covariance in the camera's
+// optical frame (paper eq. 3 and 4).
+struct LandmarkObservation {
+  std::uint32_t landmark_id = 0;
+  Eigen::Vector3d point_camera = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();
+};
+
+// The 2.5D obstacle scan of one stereo pair (paper V): for each image column, the nearest
+// point above the floor and below the robot's height, or the farthest floor point seen
+// free. Points are on the floor plane in the robot frame at capture time (pan included), so
+// the occupancy grid ray-casts from `origin_robot` to each end point.
+struct DepthScanColumn {
+  enum class Kind : std::uint8_t { invalid = 0, obstacle = 1, free = 2 };
+  float x_robot_m = 0.0F;
+  float y_robot_m = 0.0F;
+  Kind kind = Kind::invalid;
+};
+
+struct DepthScan {
+  std::int64_t timestamp_ns = 0;
+  Eigen::Vector2d origin_robot = Eigen::Vector2d::Zero();  // camera centre on the floor plane
+  // Sized once at start-up (one entry per image column) and overwritten in place.
+  std::vector<DepthScanColumn> columns;
 };
 
 }  // namespace stereoscout::core

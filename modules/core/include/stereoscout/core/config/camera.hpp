@@ -7,15 +7,15 @@ namespace stereoscout::core {
 struct CameraConfig {
   int width_px = 640;
   int height_px = 480;
-  double focal_px = 430.0;
+  double focal_px = 400.0;
   double principal_x_px = 319.5;
   double principal_y_px = 239.5;
   double baseline_m = 0.10;
   double frame_rate_hz = 15.0;
   double mount_x_m = 0.10;
   double mount_y_m = 0.0;
-  double mount_height_m = 1.0;
-  double mount_tilt_deg = 10.0;
+  double mount_height_m = 0.6;
+  double mount_tilt_deg = 0.0;
   bool has_pan_unit = true;
   double pan_rate_deg_s = 30.0;
 };
@@ -32,7 +32,7 @@ inline void describe(ConfigVisitor& v, CameraConfig& c) {
   v.number("mount_x_m", c.mount_x_m, {-2.0, 2.0, "m", "Camera position forward of the robot's centre."});
   v.number("mount_y_m", c.mount_y_m, {-2.0, 2.0, "m", "Camera position left of the robot's centre."});
   v.number("mount_height_m", c.mount_height_m, {0.05, 3.0, "m", "Height of the optical centre above the floor."});
-  v.number("mount_tilt_deg", c.mount_tilt_deg, {-45.0, 60.0, "deg", "Downward tilt of the optical axis (so the floor close to the robot is seen)."});
+  v.number("mount_tilt_deg", c.mount_tilt_deg, {-45.0, 60.0, "deg", "Downward tilt of the optical axis. The paper assumes 0 (image columns perpendicular to the floor)."});
   v.boolean("has_pan_unit", c.has_pan_unit, "The camera sits on a pan unit; without one the robot turns in place for a 360-degree look.");
   v.number("pan_rate_deg_s", c.pan_rate_deg_s, {1.0, 360.0, "deg/s", "Turn rate of the pan unit."});
   v.require(c.principal_x_px < c.width_px, "principal_x_px", "must lie inside the image (below width_px)");
