@@ -25,18 +25,23 @@ function(stereoscout_add_module name)
 endfunction()
 
 # stereoscout_add_test(<name> SOURCES ... [DEPENDS ...] [LABELS ...])
-# One GoogleTest executable per module; each TEST becomes its own CTest entry.
+# One GoogleTest executable per module; each TEST becomes its own CTest entry. Tests find
+# the source tree and the data folder through tests/support (stereoscout/test/paths.hpp).
 function(stereoscout_add_test name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPENDS;LABELS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_DEPENDS} GTest::gtest GTest::gtest_main)
+  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests/support/include)
+  target_compile_definitions(${name} PRIVATE
+    STEREOSCOUT_TEST_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+    STEREOSCOUT_TEST_DATA_DIR="${STEREOSCOUT_DATA_DIR}")
   stereoscout_target_defaults(${name})
   if(NOT ARG_LABELS)
     set(ARG_LABELS unit)
   endif()
   gtest_discover_tests(${name}
     PROPERTIES LABELS "${ARG_LABELS}"
-               ENVIRONMENT "STEREOSCOUT_DATA_DIR=${STEREOSCOUT_DATA_DIR};STEREOSCOUT_SOURCE_DIR=${PROJECT_SOURCE_DIR}"
+               ENVIRONMENT "STEREOSCOUT_DATA_DIR=${STEREOSCOUT_DATA_DIR}"
     DISCOVERY_TIMEOUT 60)
 endfunction()
 

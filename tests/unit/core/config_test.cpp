@@ -1,19 +1,16 @@
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <string>
 
 #include "stereoscout/core/system_config.hpp"
+#include "stereoscout/test/paths.hpp"
 
 namespace stereoscout::core {
 namespace {
 
-std::string source_path(const std::string& relative) {
-  const char* root = std::getenv("STEREOSCOUT_SOURCE_DIR");
-  return std::string(root != nullptr ? root : ".") + "/" + relative;
-}
+using test::source_path;
 
 std::string read_file(const std::string& path) {
   std::ifstream stream(path);
