@@ -19,6 +19,22 @@ struct VisionConfig {
   int index_max_leaf_checks = 64;
   double floor_tolerance_m = 0.05;
   double scan_max_range_m = 6.0;
+  // SIFT detector (Lowe's defaults, which OpenCV also uses).
+  int sift_octave_layers = 3;
+  double sift_contrast_threshold = 0.04;
+  double sift_edge_threshold = 10.0;
+  double sift_sigma = 1.6;
+  bool sift_parallel = false;
+  // Descriptor index.
+  double index_match_distance = 250.0;
+  int index_bucket_size = 16;
+  // Dense disparity block matcher.
+  int dense_num_disparities = 64;
+  int dense_window_px = 7;
+  double dense_uniqueness_ratio = 0.05;
+  double dense_min_texture = 6.0;
+  int dense_lr_tolerance_px = 1;
+  int scan_min_obstacle_pixels = 4;
 };
 
 inline void describe(ConfigVisitor& v, VisionConfig& c) {
@@ -36,6 +52,20 @@ inline void describe(ConfigVisitor& v, VisionConfig& c) {
   v.integer_field("index_max_leaf_checks", c.index_max_leaf_checks, {1, 100000, "", "Best-bin-first search: leaves examined per query."});
   v.number("floor_tolerance_m", c.floor_tolerance_m, {0.0, 1.0, "m", "Points higher than this above the floor count as obstacles in the 2.5D scan."});
   v.number("scan_max_range_m", c.scan_max_range_m, {0.5, 50.0, "m", "Farthest range the 2.5D scan reports."});
+  v.integer_field("sift_octave_layers", c.sift_octave_layers, {1, 8, "", "SIFT scale layers per octave (Lowe 3)."});
+  v.number("sift_contrast_threshold", c.sift_contrast_threshold, {0.001, 1.0, "", "SIFT rejects difference-of-Gaussian extrema weaker than this (Lowe 0.04)."});
+  v.number("sift_edge_threshold", c.sift_edge_threshold, {1.0, 100.0, "", "SIFT rejects edge-like extrema with a curvature ratio above this (Lowe 10)."});
+  v.number("sift_sigma", c.sift_sigma, {0.5, 5.0, "px", "Blur of the first SIFT octave (Lowe 1.6)."});
+  v.boolean("sift_parallel", c.sift_parallel, "Run SIFT on the left and right image in two threads (results are identical to the sequential run).");
+  v.number("index_match_distance", c.index_match_distance, {1.0, 1000.0, "", "Largest Euclidean distance between a key's descriptor and an index entry for the key to take that entry's identity (SIFT descriptors have norm 512)."});
+  v.integer_field("index_bucket_size", c.index_bucket_size, {2, 256, "", "Descriptors in one KD-tree leaf before it splits."});
+  v.integer_field("dense_num_disparities", c.dense_num_disparities, {2, 512, "px", "Disparities searched by the dense block matcher (0 .. N-1)."});
+  v.integer_field("dense_window_px", c.dense_window_px, {1, 31, "px", "Side of the square window over which census costs are summed (odd)."});
+  v.number("dense_uniqueness_ratio", c.dense_uniqueness_ratio, {0.0, 2.0, "", "A pixel is invalid unless the best cost times (1 + this) is below every non-adjacent disparity's cost."});
+  v.number("dense_min_texture", c.dense_min_texture, {0.0, 255.0, "grey levels", "A pixel is invalid when the mean absolute horizontal gradient in its window is below this."});
+  v.integer_field("dense_lr_tolerance_px", c.dense_lr_tolerance_px, {0, 16, "px", "Left-right consistency: largest difference between the left and the right disparity."});
+  v.integer_field("scan_min_obstacle_pixels", c.scan_min_obstacle_pixels, {1, 100, "px", "Pixels of a column that must lie above the floor before the nearest of them counts as an obstacle (rejects isolated mismatches)."});
+  v.require(c.dense_window_px % 2 == 1, "dense_window_px", "must be odd");
   v.require(c.min_disparity_px < c.max_disparity_px, "max_disparity_px", "must be larger than min_disparity_px");
   v.end_section();
 }

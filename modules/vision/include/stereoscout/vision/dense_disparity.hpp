@@ -1,0 +1,84 @@
+#pragma once
+// Dense disparity for a rectified pair (paper section V needs depth in every column; OpenCV's
+// calib3d is outside our dependency set, so the block matcher is written here).
+//
+// Cost: Hamming distance between 7x7 census transforms (robust to gain and bias differences
+// between the two cameras), summed over a square window. Winner-take-all over disparities
+// 0 .. N-1, refined to subpixel by a parabola through the three costs around the minimum.
+// A pixel is marked invalid (never guessed) when
+//   - its window has too little texture (mean absolute horizontal gradient),
+//   - the best cost is not unique (a non-adjacent disparity costs nearly as little),
+//   - the left-right check fails (the right image's own winner disagrees), or
+//   - the window or the search range leaves the image.
+// The output is referenced to the LEFT image (the usual convention of stereo benchmarks):
+// left pixel (x, y) with disparity d matches right pixel (x - d, y). All buffers are sized at
+// construction; compute() does not allocate.
+
+#include <cstdint>
+#include <vector>
+
+#include <opencv2/core/mat.hpp>
+
+#include "stereoscout/core/config/vision.hpp"
+
+namespace stereoscout::vision {
+
+inline constexpr float kInvalidDisparity = -1.0F;
+
+struct DenseDisparityParams {
+  int num_disparities = 64;
+  int window_px = 7;
+  double uniqueness_ratio = 0.05;
+  double min_texture = 6.0;
+  int lr_tolerance_px = 1;
+};
+
+DenseDisparityParams dense_params_from_config(const core::VisionConfig& vision);
+
+struct DenseDisparityStats {
+  std::size_t pixels = 0;
+  std::size_t valid = 0;
+  std::size_t rejected_texture = 0;
+  std::size_t rejected_uniqueness = 0;
+  std::size_t rejected_left_right = 0;
+  std::size_t border = 0;
+};
+
+class DenseDisparityMatcher {
+ public:
+  DenseDisparityMatcher(const DenseDisparityParams& params, int width_px, int height_px);
+
+  // left, right: CV_8UC1 of the constructed size. disparity: CV_32FC1 of the same size,
+  // allocated by the caller (allocate_output) and overwritten; kInvalidDisparity marks holes.
+  void compute(const cv::Mat& left, const cv::Mat& right, cv::Mat& disparity);
+  void allocate_output(cv::Mat& disparity) const;
+
+  const DenseDisparityStats& stats() const { return stats_; }
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+ private:
+  void census_transform(const cv::Mat& image, std::vector<std::uint64_t>& census) const;
+  void texture_integral(const cv::Mat& left);
+  void cost_row(int y, std::uint8_t* costs) const;
+  void aggregate_row();
+  void select_row(int y, float* disparity_row);
+  bool has_texture(int x, int y) const;
+
+  DenseDisparityParams params_;
+  int width_;
+  int height_;
+  int disparities_;
+  int radius_;
+  std::vector<std::uint64_t> census_left_;
+  std::vector<std::uint64_t> census_right_;
+  std::vector<std::uint8_t> cost_ring_;       // window rows of [disparity][x] census costs
+  std::vector<std::uint16_t> column_sums_;    // [disparity][x], summed over the window rows
+  std::vector<std::uint16_t> aggregated_;     // [x][disparity], summed over the window
+  std::vector<std::int32_t> right_winner_;    // integer disparity chosen by each right pixel
+  std::vector<std::int32_t> left_winner_;
+  std::vector<std::int32_t> gradient_integral_;  // (width + 1) x (height + 1)
+  DenseDisparityStats stats_;
+};
+
+}  // namespace stereoscout::vision

@@ -1,0 +1,85 @@
+#pragma once
+// The vision front end of one stereo sensor (paper sections IV and V), wired from config:
+//
+//   StereoFrame --SIFT (left, right)--> keys --epipolar matching--> stereo matches
+//     --eq. 3, C = J S J^T--> 3D points --descriptor index--> LandmarkObservation list
+//   StereoFrame --census block matcher--> disparity --column scan--> DepthScan
+//
+// Everything is sized at construction from config and the calibration. After that only
+// cv::SIFT allocates (its pyramid, inside OpenCV); matching, triangulation, the index, the
+// dense matcher and the scan do not touch the heap.
+
+#include <cstdint>
+
+#include <opencv2/core/mat.hpp>
+
+#include "stereoscout/core/config/robot.hpp"
+#include "stereoscout/core/config/vision.hpp"
+#include "stereoscout/core/fixed_vector.hpp"
+#include "stereoscout/core/geometry.hpp"
+#include "stereoscout/core/messages.hpp"
+#include "stereoscout/vision/calibration.hpp"
+#include "stereoscout/vision/dense_disparity.hpp"
+#include "stereoscout/vision/descriptor_index.hpp"
+#include "stereoscout/vision/obstacle_scan.hpp"
+#include "stereoscout/vision/sift_extractor.hpp"
+#include "stereoscout/vision/stereo_matcher.hpp"
+
+namespace stereoscout::vision {
+
+struct FrontEndFrameStats {
+  std::size_t left_keys = 0;
+  std::size_t right_keys = 0;
+  std::size_t stereo_matches = 0;
+  std::size_t landmark_observations = 0;  // handed to the filter
+  std::size_t candidate_sightings = 0;    // matched a candidate not yet seen often enough
+  std::size_t new_candidates = 0;
+  std::size_t refused = 0;                // index full (see DescriptorIndex)
+  std::size_t dropped = 0;                // observation list full
+};
+
+class VisionFrontEnd {
+ public:
+  VisionFrontEnd(const core::VisionConfig& vision, const core::RobotConfig& robot,
+                 const StereoCalibration& calibration, const core::CameraMount& mount);
+
+  // Clears `observations` and fills it with the identified landmarks of this pair, in the
+  // order of the right image's keys (strongest first). Each call is one frame of the index.
+  void observe_landmarks(const core::StereoFrame& frame, core::FixedVector<core::LandmarkObservation>& observations);
+
+  // The stereo matches of the last observe_landmarks call, with the keys they refer to.
+  const core::FixedVector<StereoMatch>& last_matches() const { return matches_; }
+  const core::FixedVector<Keypoint>& last_left_keys() const { return left_keys_; }
+  const core::FixedVector<Keypoint>& last_right_keys() const { return right_keys_; }
+
+  void allocate_scan(core::DepthScan& scan) const { scanner_.allocate(scan); }
+  // Dense disparity and the 2.5D scan of this pair (scan sized by allocate_scan).
+  void scan(const core::StereoFrame& frame, core::DepthScan& scan);
+  const cv::Mat& last_disparity() const { return disparity_; }
+
+  const FrontEndFrameStats& last_frame_stats() const { return frame_stats_; }
+  const DescriptorIndex& index() const { return index_; }
+  std::size_t max_observations() const { return max_keys_; }
+
+ private:
+  void extract_keys(const core::StereoFrame& frame);
+
+  StereoCalibration calibration_;
+  StereoNoise noise_;
+  bool parallel_sift_;
+  std::size_t max_keys_;
+  SiftExtractor left_sift_;
+  SiftExtractor right_sift_;
+  core::FixedVector<Keypoint> left_keys_;
+  core::FixedVector<Keypoint> right_keys_;
+  StereoMatcher matcher_;
+  core::FixedVector<StereoMatch> matches_;
+  DescriptorIndex index_;
+  DenseDisparityMatcher dense_;
+  cv::Mat disparity_;
+  ObstacleScanner scanner_;
+  std::uint64_t frame_counter_ = 0;
+  FrontEndFrameStats frame_stats_;
+};
+
+}  // namespace stereoscout::vision

@@ -1,0 +1,67 @@
+#pragma once
+// The 2.5D obstacle scan (paper section V): a planar-laser-like scan made from dense stereo
+// that also sees obstacles a planar laser would miss (a low box, a table top).
+//
+// For each column of the (left-referenced) disparity map, every valid pixel is triangulated
+// (eq. 3) and moved into the robot frame at capture time with core::robot_from_camera
+// (mount and pan). Scanning the column from the bottom row up:
+//   - a point higher than floor_tolerance_m above the floor and lower than the robot's height
+//     is an obstacle point; the column's obstacle is the nearest such point, confirmed by
+//     min_obstacle_pixels obstacle points no farther than it (a single mismatch cannot make
+//     a phantom obstacle);
+//   - a point within floor_tolerance_m of the floor is free floor;
+//   - points above the robot or below the floor are ignored.
+// The column reports the obstacle (kind obstacle), else free space up to the farthest floor
+// point (kind free), else nothing (kind invalid). Ranges are capped at max_range_m: farther
+// obstacles are ignored and farther floor is reported as free up to the cap.
+// A table top at 0.75 m is below a 1.2 m robot, so it is an obstacle even though the space
+// under it is free floor: the robot cannot drive under it.
+
+#include <cstdint>
+
+#include <opencv2/core/mat.hpp>
+
+#include "stereoscout/core/config/robot.hpp"
+#include "stereoscout/core/config/vision.hpp"
+#include "stereoscout/core/fixed_vector.hpp"
+#include "stereoscout/core/geometry.hpp"
+#include "stereoscout/core/messages.hpp"
+#include "stereoscout/vision/calibration.hpp"
+
+namespace stereoscout::vision {
+
+struct ObstacleScanParams {
+  double floor_tolerance_m = 0.05;
+  double robot_height_m = 1.2;
+  double max_range_m = 6.0;
+  int min_obstacle_pixels = 4;
+};
+
+ObstacleScanParams scan_params_from_config(const core::VisionConfig& vision, const core::RobotConfig& robot);
+
+class ObstacleScanner {
+ public:
+  ObstacleScanner(const ObstacleScanParams& params, const StereoCalibration& calibration,
+                  const core::CameraMount& mount);
+
+  // Sizes scan.columns to one entry per image column (start-up only).
+  void allocate(core::DepthScan& scan) const;
+
+  // disparity: CV_32FC1 referenced to the left image (DenseDisparityMatcher). No allocation.
+  void compute(const cv::Mat& disparity, double pan_rad, std::int64_t timestamp_ns, core::DepthScan& scan);
+
+ private:
+  struct Candidate {
+    double range_m = 0.0;
+    double x_m = 0.0;
+    double y_m = 0.0;
+  };
+  void keep_nearest(const Candidate& candidate);
+
+  ObstacleScanParams params_;
+  StereoCalibration calibration_;
+  core::CameraMount mount_;
+  core::FixedVector<Candidate> nearest_;  // the min_obstacle_pixels nearest obstacle points, sorted
+};
+
+}  // namespace stereoscout::vision

@@ -1,0 +1,256 @@
+#include "stereoscout/vision/dense_disparity.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <limits>
+
+#include "stereoscout/core/check.hpp"
+
+namespace stereoscout::vision {
+namespace {
+
+constexpr int kCensusRadius = 3;  // 7x7 census: 48 comparisons, fits 64 bits
+constexpr std::uint8_t kMaxCensusCost = 48;
+
+inline std::uint8_t hamming(std::uint64_t a, std::uint64_t b) {
+  return static_cast<std::uint8_t>(__builtin_popcountll(a ^ b));
+}
+
+}  // namespace
+
+DenseDisparityParams dense_params_from_config(const core::VisionConfig& vision) {
+  DenseDisparityParams params;
+  params.num_disparities = vision.dense_num_disparities;
+  params.window_px = vision.dense_window_px;
+  params.uniqueness_ratio = vision.dense_uniqueness_ratio;
+  params.min_texture = vision.dense_min_texture;
+  params.lr_tolerance_px = vision.dense_lr_tolerance_px;
+  return params;
+}
+
+DenseDisparityMatcher::DenseDisparityMatcher(const DenseDisparityParams& params, int width_px, int height_px)
+    : params_(params),
+      width_(width_px),
+      height_(height_px),
+      disparities_(params.num_disparities),
+      radius_(params.window_px / 2) {
+  STEREOSCOUT_CHECK(width_px > 0 && height_px > 0 && disparities_ >= 2, "DenseDisparityMatcher: bad size");
+  const auto pixels = static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_);
+  const auto row_costs = static_cast<std::size_t>(disparities_) * static_cast<std::size_t>(width_);
+  census_left_.resize(pixels);
+  census_right_.resize(pixels);
+  cost_ring_.resize(row_costs * static_cast<std::size_t>(2 * radius_ + 1));
+  column_sums_.resize(row_costs);
+  aggregated_.resize(row_costs);
+  right_winner_.resize(static_cast<std::size_t>(width_));
+  left_winner_.resize(static_cast<std::size_t>(width_));
+  gradient_integral_.resize(static_cast<std::size_t>(width_ + 1) * static_cast<std::size_t>(height_ + 1));
+}
+
+void DenseDisparityMatcher::allocate_output(cv::Mat& disparity) const {
+  disparity.create(height_, width_, CV_32FC1);
+}
+
+void DenseDisparityMatcher::census_transform(const cv::Mat& image, std::vector<std::uint64_t>& census) const {
+  std::fill(census.begin(), census.end(), 0);
+  for (int y = kCensusRadius; y < height_ - kCensusRadius; ++y) {
+    for (int x = kCensusRadius; x < width_ - kCensusRadius; ++x) {
+      const std::uint8_t centre = image.at<std::uint8_t>(y, x);
+      std::uint64_t bits = 0;
+      for (int dy = -kCensusRadius; dy <= kCensusRadius; ++dy) {
+        const std::uint8_t* row = image.ptr<std::uint8_t>(y + dy);
+        for (int dx = -kCensusRadius; dx <= kCensusRadius; ++dx) {
+          if (dx == 0 && dy == 0) {
+            continue;
+          }
+          bits = (bits << 1U) | (row[x + dx] < centre ? 1U : 0U);
+        }
+      }
+      census[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x)] = bits;
+    }
+  }
+}
+
+// Integral image of the absolute horizontal gradient of the left image (texture check).
+void DenseDisparityMatcher::texture_integral(const cv::Mat& left) {
+  const auto stride = static_cast<std::size_t>(width_ + 1);
+  std::fill(gradient_integral_.begin(), gradient_integral_.begin() + static_cast<std::ptrdiff_t>(stride), 0);
+  for (int y = 0; y < height_; ++y) {
+    const std::uint8_t* row = left.ptr<std::uint8_t>(y);
+    std::int32_t* out = &gradient_integral_[static_cast<std::size_t>(y + 1) * stride];
+    const std::int32_t* above = &gradient_integral_[static_cast<std::size_t>(y) * stride];
+    out[0] = 0;
+    std::int32_t row_sum = 0;
+    for (int x = 0; x < width_; ++x) {
+      const int before = row[std::max(x - 1, 0)];
+      const int after = row[std::min(x + 1, width_ - 1)];
+      row_sum += std::abs(after - before) / 2;
+      out[x + 1] = above[x + 1] + row_sum;
+    }
+  }
+}
+
+bool DenseDisparityMatcher::has_texture(int x, int y) const {
+  const auto stride = static_cast<std::size_t>(width_ + 1);
+  const auto at = [&](int xx, int yy) {
+    return gradient_integral_[static_cast<std::size_t>(yy) * stride + static_cast<std::size_t>(xx)];
+  };
+  const int x0 = x - radius_;
+  const int x1 = x + radius_ + 1;
+  const int y0 = y - radius_;
+  const int y1 = y + radius_ + 1;
+  const std::int32_t sum = at(x1, y1) - at(x0, y1) - at(x1, y0) + at(x0, y0);
+  const double area = static_cast<double>(params_.window_px) * static_cast<double>(params_.window_px);
+  return static_cast<double>(sum) >= params_.min_texture * area;
+}
+
+// Census cost of left pixel (x, y) against right pixel (x - d, y), laid out [d][x].
+void DenseDisparityMatcher::cost_row(int y, std::uint8_t* costs) const {
+  const std::uint64_t* left = &census_left_[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_)];
+  const std::uint64_t* right = &census_right_[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_)];
+  for (int d = 0; d < disparities_; ++d) {
+    std::uint8_t* out = costs + static_cast<std::ptrdiff_t>(d) * width_;
+    const int first = std::min(d + kCensusRadius, width_);
+    for (int x = 0; x < first; ++x) {
+      out[x] = kMaxCensusCost;
+    }
+    for (int x = first; x < width_; ++x) {
+      out[x] = hamming(left[x], right[x - d]);
+    }
+  }
+}
+
+// Horizontal box sum of the column sums, transposed to [x][d] for the winner search.
+void DenseDisparityMatcher::aggregate_row() {
+  const int window = 2 * radius_ + 1;
+  for (int d = 0; d < disparities_; ++d) {
+    const std::uint16_t* column = &column_sums_[static_cast<std::size_t>(d) * static_cast<std::size_t>(width_)];
+    std::uint32_t sum = 0;
+    for (int x = 0; x < window && x < width_; ++x) {
+      sum += column[x];
+    }
+    for (int x = radius_; x < width_ - radius_; ++x) {
+      aggregated_[static_cast<std::size_t>(x) * static_cast<std::size_t>(disparities_) + static_cast<std::size_t>(d)] =
+          static_cast<std::uint16_t>(sum);
+      if (x + radius_ + 1 < width_) {
+        sum += column[x + radius_ + 1];
+        sum -= column[x - radius_];
+      }
+    }
+  }
+}
+
+// Winner-take-all for one row, with subpixel refinement and the validity checks.
+void DenseDisparityMatcher::select_row(int y, float* disparity_row) {
+  const int first_x = radius_ + kCensusRadius;
+  const int last_x = width_ - 1 - radius_ - kCensusRadius;
+  const auto disparities = static_cast<std::size_t>(disparities_);
+  // The right image's own winners, for the left-right check: right pixel xr pairs with left
+  // pixel xr + d.
+  for (int xr = 0; xr < width_; ++xr) {
+    std::int32_t best = -1;
+    std::uint32_t best_cost = std::numeric_limits<std::uint32_t>::max();
+    if (xr >= first_x) {
+      for (int d = 0; d < disparities_ && xr + d <= last_x; ++d) {
+        const std::uint32_t cost = aggregated_[static_cast<std::size_t>(xr + d) * disparities + static_cast<std::size_t>(d)];
+        if (cost < best_cost) {
+          best_cost = cost;
+          best = d;
+        }
+      }
+    }
+    right_winner_[static_cast<std::size_t>(xr)] = best;
+  }
+  for (int x = first_x; x <= last_x; ++x) {
+    const int max_d = std::min(disparities_ - 1, x - first_x);
+    const std::uint16_t* costs = &aggregated_[static_cast<std::size_t>(x) * disparities];
+    int best = 0;
+    for (int d = 1; d <= max_d; ++d) {
+      if (costs[d] < costs[best]) {
+        best = d;
+      }
+    }
+    std::uint32_t second = std::numeric_limits<std::uint32_t>::max();
+    for (int d = 0; d <= max_d; ++d) {
+      if (std::abs(d - best) > 1) {
+        second = std::min<std::uint32_t>(second, costs[d]);
+      }
+    }
+    float& out = disparity_row[x];
+    out = kInvalidDisparity;
+    if (!has_texture(x, y)) {
+      ++stats_.rejected_texture;
+      continue;
+    }
+    if (second != std::numeric_limits<std::uint32_t>::max() &&
+        static_cast<double>(costs[best]) * (1.0 + params_.uniqueness_ratio) >= static_cast<double>(second)) {
+      ++stats_.rejected_uniqueness;
+      continue;
+    }
+    const int right_choice = right_winner_[static_cast<std::size_t>(x - best)];
+    if (right_choice < 0 || std::abs(right_choice - best) > params_.lr_tolerance_px) {
+      ++stats_.rejected_left_right;
+      continue;
+    }
+    double refined = best;
+    if (best > 0 && best < max_d) {
+      // Parabola through the costs at best - 1, best, best + 1.
+      const double before = costs[best - 1];
+      const double at = costs[best];
+      const double after = costs[best + 1];
+      const double curvature = before - 2.0 * at + after;
+      if (curvature > 0.0) {
+        refined += std::clamp(0.5 * (before - after) / curvature, -0.5, 0.5);
+      }
+    }
+    out = static_cast<float>(refined);
+    ++stats_.valid;
+  }
+}
+
+void DenseDisparityMatcher::compute(const cv::Mat& left, const cv::Mat& right, cv::Mat& disparity) {
+  STEREOSCOUT_CHECK(left.type() == CV_8UC1 && right.type() == CV_8UC1 && left.cols == width_ &&
+                        left.rows == height_ && right.cols == width_ && right.rows == height_,
+                    "DenseDisparityMatcher::compute: images must be 8-bit grey of the constructed size");
+  STEREOSCOUT_CHECK(disparity.type() == CV_32FC1 && disparity.cols == width_ && disparity.rows == height_,
+                    "DenseDisparityMatcher::compute: output not allocated (allocate_output)");
+  stats_ = DenseDisparityStats{};
+  stats_.pixels = static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_);
+  disparity.setTo(kInvalidDisparity);
+  census_transform(left, census_left_);
+  census_transform(right, census_right_);
+  texture_integral(left);
+  const int first_y = radius_ + kCensusRadius;
+  const int last_y = height_ - 1 - radius_ - kCensusRadius;
+  const int window = 2 * radius_ + 1;
+  const std::size_t row_costs = column_sums_.size();
+  const auto slot = [&](int row) { return &cost_ring_[static_cast<std::size_t>(row % window) * row_costs]; };
+  std::fill(column_sums_.begin(), column_sums_.end(), 0);
+  for (int y = first_y; y <= last_y; ++y) {
+    if (y == first_y) {
+      for (int row = y - radius_; row <= y + radius_; ++row) {
+        std::uint8_t* costs = slot(row);
+        cost_row(row, costs);
+        for (std::size_t i = 0; i < row_costs; ++i) {
+          column_sums_[i] = static_cast<std::uint16_t>(column_sums_[i] + costs[i]);
+        }
+      }
+    } else {
+      // The row leaving the window and the row entering it share a ring slot.
+      std::uint8_t* costs = slot(y + radius_);
+      for (std::size_t i = 0; i < row_costs; ++i) {
+        column_sums_[i] = static_cast<std::uint16_t>(column_sums_[i] - costs[i]);
+      }
+      cost_row(y + radius_, costs);
+      for (std::size_t i = 0; i < row_costs; ++i) {
+        column_sums_[i] = static_cast<std::uint16_t>(column_sums_[i] + costs[i]);
+      }
+    }
+    aggregate_row();
+    select_row(y, disparity.ptr<float>(y));
+  }
+  stats_.border = stats_.pixels - stats_.valid - stats_.rejected_texture - stats_.rejected_uniqueness -
+                  stats_.rejected_left_right;
+}
+
+}  // namespace stereoscout::vision
