@@ -1,0 +1,54 @@
+#pragma once
+// The observation model shared by every sensor: a landmark observation is a 3D point with a
+// covariance in some sensor frame. Stereo gives one directly (paper eq. 3-4: C = J S J^T);
+// a range/bearing sensor on the floor plane (MRCLAM) gives one through the same Jacobian
+// approach (range_bearing_observation). Landmark estimates live in the map frame, so the
+// observation is moved into it with the particle's pose; the rotation is exact (the pose is a
+// sample, not an estimate), which makes the map-frame EKF below identical to the textbook one
+// with H = R^T.
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "stereoscout/core/geometry.hpp"
+#include "stereoscout/core/messages.hpp"
+#include "stereoscout/slam/landmark_map.hpp"
+
+namespace stereoscout::slam {
+
+// An observation moved into the robot frame (done once per update, for all particles).
+struct RobotFrameObservation {
+  std::uint32_t landmark_id = 0;
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();
+};
+
+// The same observation in the map frame of one particle.
+struct MapFrameObservation {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();
+};
+
+RobotFrameObservation to_robot_frame(const core::LandmarkObservation& observation,
+                                     const Eigen::Isometry3d& robot_from_sensor);
+MapFrameObservation to_map_frame(const RobotFrameObservation& observation, const core::Pose2& pose);
+
+// A range/bearing measurement on the floor plane turned into a point observation in the
+// sensor frame (x forward, y left, z up): p = (r cos b, r sin b, 0), covariance J S J^T with
+// J the Jacobian of p in (r, b) and S = diag(range_sigma^2, bearing_sigma^2), plus
+// height_sigma^2 on z so the 3x3 covariance is positive definite (landmarks at z = 0).
+core::LandmarkObservation range_bearing_observation(std::uint32_t landmark_id, double range_m, double bearing_rad,
+                                                    double range_sigma_m, double bearing_sigma_rad,
+                                                    double height_sigma_m);
+
+// Squared Mahalanobis distance of the observation to an estimate, with the innovation
+// covariance S = P + C (estimate plus measurement); +infinity if S is not positive definite.
+double association_distance_squared(const LandmarkEstimate& estimate, const MapFrameObservation& observation);
+
+// EKF update of an estimate by an observation of it (paper III: "updated using the EKF").
+void ekf_update(LandmarkEstimate& estimate, const MapFrameObservation& observation);
+
+// A valid observation has a finite point and a positive definite covariance.
+bool is_valid_observation(const core::LandmarkObservation& observation);
+
+}  // namespace stereoscout::slam

@@ -1,0 +1,134 @@
+#pragma once
+// The Rao-Blackwellised particle filter over landmark maps (paper III, IV).
+//
+// One update, given the newest odometry reading and the landmark observations of that moment:
+//   1. proposal: every particle samples its motion from the odometry motion model, with the
+//      stream (seed, {motion_noise, update_index, particle slot});
+//   2. observation update (paper Algorithm 1): per particle and observation, the most likely
+//      estimate in the identity's list (Mahalanobis distance, gated) is EKF-updated, after
+//      path copying of whatever the particle shares; no estimate in the gate adds a new one;
+//      the weight gains the observation's log-likelihood (eq. 7 in log space, floored);
+//   3. ancestry: every particle gets a trajectory node (pose, time, update index);
+//   4. resampling: systematic, when the effective sample size falls below the configured
+//      fraction, with the stream (seed, {resampling, update_index, 0}).
+// All memory is reserved in the constructor; update() does not touch the heap.
+
+#include <cstddef>
+#include <cstdint>
+
+#include <Eigen/Geometry>
+
+#include "stereoscout/core/config/filter.hpp"
+#include "stereoscout/core/fixed_vector.hpp"
+#include "stereoscout/core/geometry.hpp"
+#include "stereoscout/core/messages.hpp"
+#include "stereoscout/core/status.hpp"
+#include "stereoscout/slam/landmark_map.hpp"
+#include "stereoscout/slam/motion_model.hpp"
+#include "stereoscout/slam/observation_model.hpp"
+#include "stereoscout/slam/trajectory_tree.hpp"
+
+namespace stereoscout::slam {
+
+struct Particle {
+  core::Pose2 pose;
+  double log_weight = 0.0;  // normalised so the best particle has 0 after every update
+  LandmarkMap map;
+  TrajectoryNodeHandle trajectory;
+};
+
+// A view of the observations of one update (no ownership, no copy).
+struct ObservationList {
+  const core::LandmarkObservation* data = nullptr;
+  std::size_t size = 0;
+};
+
+struct FilterCounters {
+  std::uint64_t updates = 0;
+  std::uint64_t updates_refused_trajectory_full = 0;
+  std::uint64_t resamplings = 0;
+  std::uint64_t observations_used = 0;            // per update, not per particle
+  std::uint64_t observations_invalid = 0;         // non-finite point or covariance not PD
+  std::uint64_t observations_dropped_overflow = 0;  // beyond max_observations_per_update
+  std::uint64_t estimates_added = 0;              // per particle
+  std::uint64_t estimates_updated = 0;            // per particle
+  std::uint64_t estimates_refused_list_full = 0;  // identity already holds estimates_per_landmark
+  std::uint64_t changes_refused_pool_full = 0;    // landmark pools short (see LandmarkStore)
+  std::uint64_t log_likelihood_floored = 0;       // observation likelihoods raised to the floor
+};
+
+struct UpdateResult {
+  core::Status status;
+  double effective_sample_size = 0.0;
+  bool resampled = false;
+};
+
+class ParticleFilter {
+ public:
+  ParticleFilter(const core::FilterConfig& config, const core::CameraMount& camera_mount, std::uint64_t seed);
+  ~ParticleFilter();
+
+  ParticleFilter(const ParticleFilter&) = delete;
+  ParticleFilter& operator=(const ParticleFilter&) = delete;
+
+  // Places every particle at `initial_pose` with an empty map; `odometry` is the reading the
+  // first update's motion is measured from. Releases whatever an earlier run held.
+  void start(const core::OdometryReading& odometry, const core::Pose2& initial_pose = {});
+
+  // One update with stereo observations in the camera's optical frame, the camera on the
+  // configured mount turned by `pan_rad`.
+  UpdateResult update(const core::OdometryReading& odometry, ObservationList observations, double pan_rad);
+  // The same for any sensor: observations are points in the frame `robot_from_sensor` maps
+  // into the robot frame (identity for a sensor at the robot's centre, as in MRCLAM).
+  UpdateResult update(const core::OdometryReading& odometry, ObservationList observations,
+                      const Eigen::Isometry3d& robot_from_sensor);
+
+  std::size_t particle_count() const { return particles_->size(); }
+  const Particle& particle(std::size_t slot) const { return (*particles_)[slot]; }
+
+  // The maximum-likelihood particle: the best weight of the last update (carried through
+  // resampling to one of its copies).
+  std::size_t ml_slot() const { return ml_slot_; }
+  const Particle& ml_particle() const { return particle(ml_slot_); }
+  core::Pose2 ml_pose() const { return ml_particle().pose; }
+  TrajectoryNodeHandle ml_trajectory_node() const { return ml_particle().trajectory; }
+  const LandmarkMap& ml_map() const { return ml_particle().map; }
+  core::Pose2 weighted_mean_pose() const;
+  double effective_sample_size() const;
+  std::uint32_t update_index() const { return update_index_; }
+
+  const LandmarkStore& landmarks() const { return landmarks_; }
+  TrajectoryTree& trajectory() { return trajectory_; }
+  const TrajectoryTree& trajectory() const { return trajectory_; }
+  const FilterCounters& counters() const { return counters_; }
+  const core::FilterConfig& config() const { return config_; }
+
+ private:
+  void release_particles(core::FixedVector<Particle>& particles);
+  void predict(const core::Pose2& motion);
+  std::size_t prepare_observations(ObservationList observations, const Eigen::Isometry3d& robot_from_sensor);
+  double observe(Particle& particle, const RobotFrameObservation& observation);
+  void extend_trajectories(std::int64_t timestamp_ns);
+  void normalise_weights();
+  std::size_t best_slot() const;
+  void resample();
+
+  core::FilterConfig config_;
+  core::CameraMount camera_mount_;
+  std::uint64_t seed_;
+  MotionNoise motion_noise_;
+  LandmarkStore landmarks_;
+  TrajectoryTree trajectory_;
+  core::FixedVector<Particle> particles_a_;
+  core::FixedVector<Particle> particles_b_;
+  core::FixedVector<Particle>* particles_;  // current generation
+  core::FixedVector<Particle>* spare_;      // the next one, built by resampling
+  core::FixedVector<RobotFrameObservation> observations_;
+  core::FixedVector<double> scratch_weights_;
+  core::Pose2 last_odometry_;
+  std::uint32_t update_index_ = 0;
+  std::size_t ml_slot_ = 0;
+  FilterCounters counters_;
+};
+
+}  // namespace stereoscout::slam

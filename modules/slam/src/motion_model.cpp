@@ -1,0 +1,28 @@
+#include "stereoscout/slam/motion_model.hpp"
+
+#include <cmath>
+
+namespace stereoscout::slam {
+
+MotionNoise motion_noise_from_config(const core::FilterConfig& config) {
+  MotionNoise noise;
+  noise.translation_per_m = config.motion_noise_translation_per_m;
+  noise.rotation_per_rad = config.motion_noise_rotation_per_rad;
+  noise.rotation_per_m = config.motion_noise_rotation_per_m;
+  noise.translation_per_rad = config.motion_noise_translation_per_rad;
+  return noise;
+}
+
+core::Pose2 sample_motion(const core::Pose2& motion, const MotionNoise& noise, core::RandomStream& stream) {
+  const double distance = std::sqrt(motion.x * motion.x + motion.y * motion.y);
+  const double turn = std::fabs(motion.theta);
+  const double translation_sigma = noise.translation_per_m * distance + noise.translation_per_rad * turn;
+  const double rotation_sigma = noise.rotation_per_rad * turn + noise.rotation_per_m * distance;
+  // Draw order is fixed (x, y, theta) so a particle's sample is a pure function of its stream.
+  const double noise_x = stream.gaussian(0.0, translation_sigma);
+  const double noise_y = stream.gaussian(0.0, translation_sigma);
+  const double noise_theta = stream.gaussian(0.0, rotation_sigma);
+  return core::Pose2{motion.x + noise_x, motion.y + noise_y, core::wrap_angle(motion.theta + noise_theta)};
+}
+
+}  // namespace stereoscout::slam

@@ -1,0 +1,278 @@
+#include "stereoscout/slam/particle_filter.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "stereoscout/core/check.hpp"
+#include "stereoscout/core/random.hpp"
+
+namespace stereoscout::slam {
+namespace {
+
+std::size_t to_size(int value) { return static_cast<std::size_t>(value); }
+
+}  // namespace
+
+ParticleFilter::ParticleFilter(const core::FilterConfig& config, const core::CameraMount& camera_mount,
+                               std::uint64_t seed)
+    : config_(config),
+      camera_mount_(camera_mount),
+      seed_(seed),
+      motion_noise_(motion_noise_from_config(config)),
+      landmarks_(to_size(config.landmark_node_capacity), to_size(config.landmark_estimate_capacity)),
+      trajectory_(to_size(config.trajectory_node_capacity)),
+      particles_a_(to_size(config.particle_capacity)),
+      particles_b_(to_size(config.particle_capacity)),
+      particles_(&particles_a_),
+      spare_(&particles_b_),
+      observations_(to_size(config.max_observations_per_update)),
+      scratch_weights_(to_size(config.particle_capacity)) {
+  STEREOSCOUT_CHECK(config.particles >= 1 && config.particles <= config.particle_capacity,
+                    "filter.particles must be in [1, particle_capacity]");
+  start(core::OdometryReading{});
+}
+
+ParticleFilter::~ParticleFilter() { release_particles(*particles_); }
+
+void ParticleFilter::release_particles(core::FixedVector<Particle>& particles) {
+  for (Particle& p : particles) {
+    landmarks_.release(p.map);
+    if (p.trajectory) {
+      trajectory_.release(p.trajectory);
+    }
+  }
+  particles.clear();
+}
+
+void ParticleFilter::start(const core::OdometryReading& odometry, const core::Pose2& initial_pose) {
+  release_particles(*particles_);
+  const TrajectoryNodeHandle root = trajectory_.add({}, initial_pose, odometry.timestamp_ns, 0);
+  STEREOSCOUT_CHECK(root, "filter.trajectory_node_capacity leaves no room for the first node");
+  for (int i = 0; i < config_.particles; ++i) {
+    Particle p;
+    p.pose = initial_pose;
+    p.trajectory = root;
+    if (i > 0) {
+      trajectory_.retain(root);
+    }
+    particles_->push_back(p);
+  }
+  last_odometry_ = odometry.pose;
+  update_index_ = 1;  // the root is update 0
+  ml_slot_ = 0;
+}
+
+UpdateResult ParticleFilter::update(const core::OdometryReading& odometry, ObservationList observations,
+                                    double pan_rad) {
+  return update(odometry, observations, core::robot_from_camera(camera_mount_, pan_rad));
+}
+
+UpdateResult ParticleFilter::update(const core::OdometryReading& odometry, ObservationList observations,
+                                    const Eigen::Isometry3d& robot_from_sensor) {
+  UpdateResult result;
+  if (trajectory_.available() < particles_->size()) {
+    // Defined degradation: no update; the odometry motion carries over to the next one.
+    ++counters_.updates_refused_trajectory_full;
+    result.status = {core::StatusCode::exhausted, "trajectory node pool full: update refused"};
+    result.effective_sample_size = effective_sample_size();
+    return result;
+  }
+  predict(last_odometry_.between(odometry.pose));
+  last_odometry_ = odometry.pose;
+  const std::size_t used = prepare_observations(observations, robot_from_sensor);
+  for (Particle& p : *particles_) {
+    double log_likelihood = 0.0;
+    for (std::size_t k = 0; k < used; ++k) {
+      log_likelihood += observe(p, observations_[k]);
+    }
+    p.log_weight += log_likelihood;
+  }
+  extend_trajectories(odometry.timestamp_ns);
+  normalise_weights();
+  ml_slot_ = best_slot();
+  result.effective_sample_size = effective_sample_size();
+  if (result.effective_sample_size < config_.resample_ess_fraction * static_cast<double>(particles_->size())) {
+    resample();
+    result.resampled = true;
+  }
+  ++update_index_;
+  ++counters_.updates;
+  return result;
+}
+
+void ParticleFilter::predict(const core::Pose2& motion) {
+  for (std::size_t slot = 0; slot < particles_->size(); ++slot) {
+    core::RandomStream stream(seed_, {core::stream_purpose::motion_noise, update_index_,
+                                      static_cast<std::uint32_t>(slot)});
+    Particle& p = (*particles_)[slot];
+    p.pose = p.pose.compose(sample_motion(motion, motion_noise_, stream));
+  }
+}
+
+std::size_t ParticleFilter::prepare_observations(ObservationList observations,
+                                                 const Eigen::Isometry3d& robot_from_sensor) {
+  observations_.clear();
+  for (std::size_t k = 0; k < observations.size; ++k) {
+    const core::LandmarkObservation& observation = observations.data[k];
+    if (!is_valid_observation(observation)) {
+      ++counters_.observations_invalid;
+      continue;
+    }
+    if (observations_.full()) {
+      ++counters_.observations_dropped_overflow;
+      continue;
+    }
+    observations_.push_back(to_robot_frame(observation, robot_from_sensor));
+    ++counters_.observations_used;
+  }
+  return observations_.size();
+}
+
+// Paper Algorithm 1 for one particle and one observation; returns its log-likelihood (eq. 7,
+// the constant k dropped: it is the same for every particle).
+double ParticleFilter::observe(Particle& particle, const RobotFrameObservation& observation) {
+  const MapFrameObservation seen = to_map_frame(observation, particle.pose);
+  const MapNode* leaf = landmarks_.find_leaf(particle.map, observation.landmark_id);
+  if (leaf == nullptr || leaf->estimates.empty()) {
+    // A first sighting: every particle is in the same position, the weight is unchanged.
+    MapNode* fresh = landmarks_.mutable_leaf(particle.map, observation.landmark_id, 1);
+    if (fresh == nullptr) {
+      ++counters_.changes_refused_pool_full;
+      return 0.0;
+    }
+    landmarks_.add_estimate(*fresh, LandmarkEstimate{seen.point, seen.covariance, 1});
+    ++counters_.estimates_added;
+    return 0.0;
+  }
+  std::size_t best = 0;
+  double best_distance = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < leaf->estimates.size(); ++i) {
+    const double d2 = association_distance_squared(landmarks_.estimate(leaf->estimates[i]), seen);
+    if (d2 < best_distance) {
+      best_distance = d2;
+      best = i;
+    }
+  }
+  double log_likelihood = -0.5 * best_distance;
+  if (!(log_likelihood >= config_.min_log_likelihood)) {
+    log_likelihood = config_.min_log_likelihood;
+    ++counters_.log_likelihood_floored;
+  }
+  const bool in_gate = best_distance <= config_.association_gate_chi2;
+  if (!in_gate && leaf->estimates.size() >= to_size(config_.estimates_per_landmark)) {
+    ++counters_.estimates_refused_list_full;
+    return log_likelihood;
+  }
+  MapNode* own = landmarks_.mutable_leaf(particle.map, observation.landmark_id, 1);
+  if (own == nullptr) {
+    ++counters_.changes_refused_pool_full;
+    return log_likelihood;
+  }
+  if (in_gate) {
+    ekf_update(landmarks_.mutable_estimate(*own, best), seen);
+    ++counters_.estimates_updated;
+  } else {
+    // Spatially distinct from every estimate of this identity: a new landmark (paper Fig. 1).
+    landmarks_.add_estimate(*own, LandmarkEstimate{seen.point, seen.covariance, 1});
+    ++counters_.estimates_added;
+  }
+  return log_likelihood;
+}
+
+void ParticleFilter::extend_trajectories(std::int64_t timestamp_ns) {
+  for (Particle& p : *particles_) {
+    const TrajectoryNodeHandle node = trajectory_.add(p.trajectory, p.pose, timestamp_ns, update_index_);
+    STEREOSCOUT_CHECK(node, "trajectory pool ran out after its room was checked");
+    trajectory_.release(p.trajectory);  // the new node now holds the parent
+    p.trajectory = node;
+  }
+}
+
+void ParticleFilter::normalise_weights() {
+  double best = -std::numeric_limits<double>::infinity();
+  for (const Particle& p : *particles_) {
+    best = p.log_weight > best ? p.log_weight : best;
+  }
+  for (Particle& p : *particles_) {
+    p.log_weight -= best;
+  }
+}
+
+std::size_t ParticleFilter::best_slot() const {
+  std::size_t best = 0;
+  for (std::size_t slot = 1; slot < particles_->size(); ++slot) {
+    if ((*particles_)[slot].log_weight > (*particles_)[best].log_weight) {
+      best = slot;  // strict: ties keep the lowest slot, so the choice is deterministic
+    }
+  }
+  return best;
+}
+
+double ParticleFilter::effective_sample_size() const {
+  double sum = 0.0;
+  double sum_squares = 0.0;
+  for (const Particle& p : *particles_) {
+    const double w = std::exp(p.log_weight);
+    sum += w;
+    sum_squares += w * w;
+  }
+  return sum_squares > 0.0 ? sum * sum / sum_squares : 0.0;
+}
+
+core::Pose2 ParticleFilter::weighted_mean_pose() const {
+  double sum = 0.0;
+  double x = 0.0;
+  double y = 0.0;
+  double cosine = 0.0;
+  double sine = 0.0;
+  for (const Particle& p : *particles_) {
+    const double w = std::exp(p.log_weight);
+    sum += w;
+    x += w * p.pose.x;
+    y += w * p.pose.y;
+    cosine += w * std::cos(p.pose.theta);
+    sine += w * std::sin(p.pose.theta);
+  }
+  return core::Pose2{x / sum, y / sum, std::atan2(sine, cosine)};
+}
+
+// Systematic (low-variance) resampling: one uniform offset, N evenly spaced pointers.
+void ParticleFilter::resample() {
+  core::FixedVector<Particle>& current = *particles_;
+  core::FixedVector<Particle>& next = *spare_;
+  const std::size_t n = current.size();
+  scratch_weights_.clear();
+  double total = 0.0;
+  for (const Particle& p : current) {
+    total += std::exp(p.log_weight);
+    scratch_weights_.push_back(total);  // cumulative
+  }
+  core::RandomStream stream(seed_, {core::stream_purpose::resampling, update_index_, 0});
+  const double step = total / static_cast<double>(n);
+  double pointer = stream.uniform() * step;
+  std::size_t source = 0;
+  std::size_t new_ml_slot = n;
+  next.clear();
+  for (std::size_t k = 0; k < n; ++k) {
+    while (source + 1 < n && scratch_weights_[source] <= pointer) {
+      ++source;
+    }
+    Particle copy = current[source];
+    copy.log_weight = 0.0;
+    landmarks_.retain(copy.map);
+    trajectory_.retain(copy.trajectory);
+    if (source == ml_slot_ && new_ml_slot == n) {
+      new_ml_slot = k;
+    }
+    next.push_back(copy);
+    pointer += step;
+  }
+  release_particles(current);
+  particles_ = &next;
+  spare_ = &current;
+  // The ML particle has the largest weight, so systematic resampling always keeps it.
+  ml_slot_ = new_ml_slot < n ? new_ml_slot : 0;
+  ++counters_.resamplings;
+}
+
+}  // namespace stereoscout::slam

@@ -1,0 +1,293 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "stereoscout/core/allocation_counter.hpp"
+#include "stereoscout/core/random.hpp"
+#include "stereoscout/slam/particle_filter.hpp"
+#include "stereoscout/slam/slam_export.hpp"
+
+namespace stereoscout::slam {
+namespace {
+
+core::FilterConfig small_config(int particles) {
+  core::FilterConfig config;
+  config.particles = particles;
+  config.particle_capacity = particles;
+  config.landmark_node_capacity = 200000;
+  config.landmark_estimate_capacity = 100000;
+  config.trajectory_node_capacity = 100000;
+  config.max_observations_per_update = 64;
+  return config;
+}
+
+core::FilterConfig noiseless(core::FilterConfig config) {
+  config.motion_noise_translation_per_m = 0.0;
+  config.motion_noise_rotation_per_rad = 0.0;
+  config.motion_noise_rotation_per_m = 0.0;
+  config.motion_noise_translation_per_rad = 0.0;
+  return config;
+}
+
+// The robot drives a circle of radius 2 m around a ring of landmarks at 1 m height.
+core::Pose2 true_pose(int step) {
+  const double angle = 0.05 * step;
+  return core::Pose2{2.0 * std::cos(angle), 2.0 * std::sin(angle), core::wrap_angle(angle + 0.5 * core::kPi)};
+}
+
+Eigen::Vector3d landmark_position(std::uint32_t id) {
+  const double angle = 0.7 * id;
+  return Eigen::Vector3d(3.5 * std::cos(angle), 3.5 * std::sin(angle), 1.0 + 0.1 * id);
+}
+
+core::OdometryReading odometry_at(int step, const core::Pose2& pose) {
+  core::OdometryReading reading;
+  reading.timestamp_ns = static_cast<std::int64_t>(step) * 200000000;
+  reading.sequence = static_cast<std::uint64_t>(step);
+  reading.pose = pose;
+  return reading;
+}
+
+// Observations of every landmark, in the frame `robot_from_sensor` maps from, with noise.
+std::vector<core::LandmarkObservation> observe_all(const core::Pose2& pose, const Eigen::Isometry3d& robot_from_sensor,
+                                                   std::uint32_t landmarks, int step, double noise_m) {
+  const Eigen::Isometry3d map_from_sensor = pose.to_isometry3() * robot_from_sensor;
+  core::RandomStream noise(99, {core::stream_purpose::test, static_cast<std::uint32_t>(step), 0});
+  std::vector<core::LandmarkObservation> observations;
+  for (std::uint32_t id = 0; id < landmarks; ++id) {
+    core::LandmarkObservation o;
+    o.landmark_id = id;
+    o.point_camera = map_from_sensor.inverse() * landmark_position(id);
+    for (int axis = 0; axis < 3; ++axis) {
+      o.point_camera[axis] += noise.gaussian(0.0, noise_m);
+    }
+    o.covariance = Eigen::Matrix3d::Identity() * 0.01;
+    o.covariance(2, 2) = 0.04;
+    o.covariance(0, 2) = o.covariance(2, 0) = 0.005;
+    observations.push_back(o);
+  }
+  return observations;
+}
+
+ObservationList as_list(const std::vector<core::LandmarkObservation>& observations) {
+  return ObservationList{observations.data(), observations.size()};
+}
+
+// The textbook EKF of one landmark with the exact pose: h(m) = R^T (m - t), H = R^T.
+struct PlainEkf {
+  Eigen::Vector3d mean;
+  Eigen::Matrix3d covariance;
+  bool started = false;
+
+  void observe(const Eigen::Isometry3d& map_from_sensor, const core::LandmarkObservation& o) {
+    const Eigen::Matrix3d rotation = map_from_sensor.linear();
+    if (!started) {
+      mean = map_from_sensor * o.point_camera;
+      covariance = rotation * o.covariance * rotation.transpose();
+      started = true;
+      return;
+    }
+    const Eigen::Matrix3d h = rotation.transpose();
+    const Eigen::Vector3d predicted = map_from_sensor.inverse() * mean;
+    const Eigen::Matrix3d s = h * covariance * h.transpose() + o.covariance;
+    const Eigen::Matrix3d gain = covariance * h.transpose() * s.inverse();
+    mean += gain * (o.point_camera - predicted);
+    covariance = (Eigen::Matrix3d::Identity() - gain * h) * covariance;
+  }
+};
+
+TEST(ParticleFilter, OneParticleWithExactOdometryEqualsAPlainEkfPerLandmark) {
+  const core::CameraMount mount{0.1, 0.02, 0.6, 0.05};
+  ParticleFilter filter(noiseless(small_config(1)), mount, 7);
+  filter.start(odometry_at(0, true_pose(0)), true_pose(0));
+  constexpr std::uint32_t kLandmarks = 5;
+  std::vector<PlainEkf> reference(kLandmarks);
+  for (int step = 1; step <= 30; ++step) {
+    const double pan = 0.02 * step - 0.3;
+    const Eigen::Isometry3d robot_from_camera = core::robot_from_camera(mount, pan);
+    const auto observations = observe_all(true_pose(step), robot_from_camera, kLandmarks, step, 0.05);
+    const UpdateResult result = filter.update(odometry_at(step, true_pose(step)), as_list(observations), pan);
+    ASSERT_TRUE(result.status.ok());
+    for (const auto& o : observations) {
+      reference[o.landmark_id].observe(true_pose(step).to_isometry3() * robot_from_camera, o);
+    }
+  }
+  EXPECT_NEAR(filter.ml_pose().x, true_pose(30).x, 1e-12);
+  EXPECT_NEAR(filter.ml_pose().theta, true_pose(30).theta, 1e-12);
+  for (std::uint32_t id = 0; id < kLandmarks; ++id) {
+    const MapNode* leaf = filter.landmarks().find_leaf(filter.ml_map(), id);
+    ASSERT_NE(leaf, nullptr);
+    ASSERT_EQ(leaf->estimates.size(), 1u) << "landmark " << id;
+    const LandmarkEstimate& estimate = filter.landmarks().estimate(leaf->estimates[0]);
+    EXPECT_EQ(estimate.observations, 30u);
+    for (int r = 0; r < 3; ++r) {
+      EXPECT_NEAR(estimate.mean[r], reference[id].mean[r], 1e-9);
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(estimate.covariance(r, c), reference[id].covariance(r, c), 1e-12);
+      }
+    }
+    EXPECT_LT((estimate.mean - landmark_position(id)).norm(), 0.05);
+  }
+}
+
+TEST(ParticleFilter, TwoSpatiallyDistinctLandmarksWithOneIdentityAreKeptApart) {
+  ParticleFilter filter(noiseless(small_config(1)), core::CameraMount{}, 3);
+  filter.start(odometry_at(0, {}));
+  const Eigen::Vector3d first(3.0, 1.0, 0.0);
+  const Eigen::Vector3d second(3.0, -2.0, 0.0);
+  for (int step = 1; step <= 10; ++step) {
+    const core::Pose2 pose{0.05 * step, 0.0, 0.0};
+    std::vector<core::LandmarkObservation> observations(2);
+    observations[0].landmark_id = observations[1].landmark_id = 7;
+    observations[0].point_camera = first - Eigen::Vector3d(pose.x, 0.0, 0.0);
+    observations[1].point_camera = second - Eigen::Vector3d(pose.x, 0.0, 0.0);
+    observations[0].covariance = observations[1].covariance = Eigen::Matrix3d::Identity() * 0.01;
+    filter.update(odometry_at(step, pose), as_list(observations), Eigen::Isometry3d::Identity());
+  }
+  const MapNode* leaf = filter.landmarks().find_leaf(filter.ml_map(), 7);
+  ASSERT_NE(leaf, nullptr);
+  ASSERT_EQ(leaf->estimates.size(), 2u);
+  const LandmarkEstimate& a = filter.landmarks().estimate(leaf->estimates[0]);
+  const LandmarkEstimate& b = filter.landmarks().estimate(leaf->estimates[1]);
+  EXPECT_EQ(a.observations, 10u);
+  EXPECT_EQ(b.observations, 10u);
+  EXPECT_LT((a.mean - first).norm(), 1e-9);
+  EXPECT_LT((b.mean - second).norm(), 1e-9);
+  EXPECT_EQ(filter.counters().estimates_added, 2u);
+  EXPECT_EQ(filter.counters().estimates_updated, 18u);
+}
+
+std::string run_noisy(std::uint64_t seed, int particles) {
+  core::FilterConfig config = small_config(particles);
+  config.motion_noise_translation_per_m = 0.1;
+  config.motion_noise_rotation_per_rad = 0.1;
+  ParticleFilter filter(config, core::CameraMount{}, seed);
+  filter.start(odometry_at(0, true_pose(0)), true_pose(0));
+  for (int step = 1; step <= 40; ++step) {
+    const auto observations = observe_all(true_pose(step), Eigen::Isometry3d::Identity(), 8, step, 0.05);
+    filter.update(odometry_at(step, true_pose(step)), as_list(observations), Eigen::Isometry3d::Identity());
+  }
+  std::ostringstream out;
+  write_tum_trajectory(out, filter.trajectory(), filter.ml_trajectory_node());
+  out << tum_line(0, filter.weighted_mean_pose()) << filter.counters().resamplings;
+  return out.str();
+}
+
+TEST(ParticleFilter, SameSeedGivesAByteIdenticalTrajectory) {
+  const std::string first = run_noisy(11, 50);
+  const std::string second = run_noisy(11, 50);
+  EXPECT_EQ(first, second);
+  EXPECT_NE(first, run_noisy(12, 50));
+  EXPECT_EQ(std::count(first.begin(), first.end(), '\n'), 42);  // 41 nodes + mean line
+}
+
+TEST(ParticleFilter, UpdatesDoNotTouchTheHeap) {
+  core::FilterConfig config = small_config(100);
+  config.resample_ess_fraction = 0.9;  // resample often, so that path is covered too
+  ParticleFilter filter(config, core::CameraMount{}, 5);
+  filter.start(odometry_at(0, true_pose(0)), true_pose(0));
+  std::vector<std::vector<core::LandmarkObservation>> batches;
+  for (int step = 1; step <= 20; ++step) {
+    batches.push_back(observe_all(true_pose(step), Eigen::Isometry3d::Identity(), 12, step, 0.05));
+  }
+  const core::AllocationScope scope;
+  for (int step = 1; step <= 20; ++step) {
+    filter.update(odometry_at(step, true_pose(step)), as_list(batches[static_cast<std::size_t>(step - 1)]), 0.1);
+  }
+  EXPECT_EQ(scope.allocations(), 0u);
+  EXPECT_GT(filter.counters().resamplings, 0u);
+}
+
+TEST(ParticleFilter, RestartReleasesEveryNodeAndTheTrajectoryKeepsItsAncestry) {
+  core::FilterConfig config = small_config(64);
+  config.resample_ess_fraction = 0.9;
+  ParticleFilter filter(config, core::CameraMount{}, 9);
+  filter.start(odometry_at(0, true_pose(0)), true_pose(0));
+  EXPECT_EQ(filter.landmarks().nodes_in_use(), 0u);
+  EXPECT_EQ(filter.trajectory().in_use(), 1u);
+  for (int step = 1; step <= 25; ++step) {
+    const auto observations = observe_all(true_pose(step), Eigen::Isometry3d::Identity(), 10, step, 0.05);
+    filter.update(odometry_at(step, true_pose(step)), as_list(observations), Eigen::Isometry3d::Identity());
+  }
+  EXPECT_GT(filter.counters().resamplings, 0u);
+  // Resampled siblings share: far fewer nodes than 64 private copies of a 10-landmark tree.
+  EXPECT_LT(filter.landmarks().nodes_in_use(), 64u * 23u);
+  // Walking up from the ML particle meets every update once, newest first.
+  std::uint32_t expected = 25;
+  for (TrajectoryNodeHandle at = filter.ml_trajectory_node(); at; at = filter.trajectory().parent(at)) {
+    EXPECT_EQ(filter.trajectory().get(at).update_index, expected);
+    --expected;
+  }
+  EXPECT_EQ(expected, static_cast<std::uint32_t>(-1));
+  filter.start(odometry_at(0, true_pose(0)), true_pose(0));
+  EXPECT_EQ(filter.landmarks().nodes_in_use(), 0u);
+  EXPECT_EQ(filter.landmarks().estimates_in_use(), 0u);
+  EXPECT_EQ(filter.trajectory().in_use(), 1u);
+}
+
+struct FreedNodes {
+  int count = 0;
+  static void on_free(void* context, const TrajectoryNode& node) {
+    if (node.user_slot != kNoUserSlot) {
+      ++static_cast<FreedNodes*>(context)->count;
+    }
+  }
+};
+
+TEST(TrajectoryTree, ANodeLivesWhileADescendantOrARetainerHoldsIt) {
+  TrajectoryTree tree(10);
+  FreedNodes freed;
+  tree.set_free_listener(&FreedNodes::on_free, &freed);
+  const TrajectoryNodeHandle root = tree.add({}, {}, 0, 0);
+  const TrajectoryNodeHandle left = tree.add(root, {1.0, 0.0, 0.0}, 1, 1);
+  const TrajectoryNodeHandle right = tree.add(root, {0.0, 1.0, 0.0}, 1, 1);
+  tree.release(root);  // only the children hold it now
+  tree.set_user_slot(root, 5);
+  EXPECT_EQ(tree.use_count(root), 2u);
+  tree.release(left);
+  EXPECT_TRUE(tree.is_live(root));
+  tree.retain(right);  // e.g. the occupancy module keeps a grid here
+  tree.release(right);
+  EXPECT_TRUE(tree.is_live(right));
+  tree.release(right);
+  EXPECT_FALSE(tree.is_live(root));
+  EXPECT_EQ(tree.in_use(), 0u);
+  EXPECT_EQ(freed.count, 1);
+}
+
+TEST(ParticleFilter, FullPoolsDegradeAndAreCounted) {
+  core::FilterConfig config = small_config(10);
+  config.landmark_estimate_capacity = 25;
+  config.trajectory_node_capacity = 35;
+  ParticleFilter filter(config, core::CameraMount{}, 1);
+  filter.start(odometry_at(0, true_pose(0)), true_pose(0));
+  int refused = 0;
+  for (int step = 1; step <= 6; ++step) {
+    const auto observations = observe_all(true_pose(step), Eigen::Isometry3d::Identity(), 4, step, 0.05);
+    const UpdateResult result =
+        filter.update(odometry_at(step, true_pose(step)), as_list(observations), Eigen::Isometry3d::Identity());
+    refused += result.status.ok() ? 0 : 1;
+  }
+  EXPECT_GT(filter.counters().changes_refused_pool_full, 0u);
+  EXPECT_GT(filter.counters().updates_refused_trajectory_full, 0u);
+  EXPECT_EQ(static_cast<std::uint64_t>(refused), filter.counters().updates_refused_trajectory_full);
+  EXPECT_LE(filter.landmarks().estimates_in_use(), 25u);
+}
+
+TEST(ObservationModel, RangeBearingCovarianceFollowsTheJacobian) {
+  const core::LandmarkObservation o = range_bearing_observation(3, 2.0, 0.5 * core::kPi, 0.1, 0.05, 0.01);
+  EXPECT_NEAR(o.point_camera.x(), 0.0, 1e-12);
+  EXPECT_NEAR(o.point_camera.y(), 2.0, 1e-12);
+  // Looking along y: range noise along y, bearing noise (r * sigma_b) along x.
+  EXPECT_NEAR(o.covariance(1, 1), 0.01, 1e-12);
+  EXPECT_NEAR(o.covariance(0, 0), 0.01, 1e-12);
+  EXPECT_NEAR(o.covariance(2, 2), 1e-4, 1e-15);
+  EXPECT_TRUE(is_valid_observation(o));
+}
+
+}  // namespace
+}  // namespace stereoscout::slam
