@@ -13,6 +13,9 @@ STEREOSCOUT_PACKAGES=(
   libgtest-dev libbenchmark-dev
 )
 
+# The cross toolchain and the emulator for `tools/test --target aarch64`.
+STEREOSCOUT_CROSS_PACKAGES=(g++-aarch64-linux-gnu qemu-user ca-certificates)
+
 say() { printf '==> %s\n' "$*"; }
 die() { printf '%s: error: %s\n' "${0##*/}" "$*" >&2; exit 1; }
 

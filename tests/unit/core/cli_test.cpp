@@ -14,7 +14,9 @@ struct Result {
 };
 
 Result run(const std::string& arguments) {
-  const std::string command = std::string(STEREOSCOUT_BINARY) + " " + arguments + " 2>&1";
+  const std::string emulator = STEREOSCOUT_BINARY_EMULATOR;
+  const std::string command =
+      (emulator.empty() ? "" : emulator + " ") + STEREOSCOUT_BINARY + " " + arguments + " 2>&1";
   std::FILE* pipe = ::popen(command.c_str(), "r");
   Result result{-1, ""};
   if (pipe == nullptr) {
