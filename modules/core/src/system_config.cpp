@@ -24,6 +24,7 @@ void describe(ConfigVisitor& visitor, SystemConfig& config) {
   describe(visitor, config.grid);
   describe(visitor, config.explore);
   describe(visitor, config.budgets);
+  describe(visitor, config.sim);
 }
 
 std::string SystemConfigLoad::error_text() const {

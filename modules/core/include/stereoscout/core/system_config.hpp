@@ -13,6 +13,7 @@
 #include "stereoscout/core/config/grid.hpp"
 #include "stereoscout/core/config/robot.hpp"
 #include "stereoscout/core/config/run.hpp"
+#include "stereoscout/core/config/sim.hpp"
 #include "stereoscout/core/config/vision.hpp"
 
 namespace stereoscout::core {
@@ -26,6 +27,7 @@ struct SystemConfig {
   GridConfig grid;
   ExploreConfig explore;
   BudgetsConfig budgets;
+  SimConfig sim;
 };
 
 void describe(ConfigVisitor& visitor, SystemConfig& config);

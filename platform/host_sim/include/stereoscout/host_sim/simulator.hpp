@@ -1,0 +1,151 @@
+#pragma once
+// The simulated robot (SITL). Simulator owns the state — true pose, pan angle, simulated
+// time, drive command, odometry integrator — and advances only when step(dt) is called, so
+// nothing depends on wall-clock time. SimCamera, SimOdometry, SimDrive and SimClock are the
+// platform interfaces on top of it; the application uses them exactly like the robot's.
+//
+// Kinematics: differential drive (unicycle) at the commanded velocities, clamped to the
+// robot's limits (paper: 0.12 m/s, 8 deg/s), no acceleration limits. Collision: if the next
+// integration step would bring the robot's disc into an obstacle of its height band (or a
+// person), the robot stays, its command is zeroed and collision_count() goes up by one; a
+// new command lets it move again.
+//
+// Odometry: at robot.odometry_rate_hz the true motion since the last reading is corrupted by
+// the noise model of the floor under the robot (config sim.tile / sim.carpet) and integrated
+// into the odometry pose.
+
+#include <cstdint>
+
+#include "stereoscout/core/config/camera.hpp"
+#include "stereoscout/core/config/robot.hpp"
+#include "stereoscout/core/config/sim.hpp"
+#include "stereoscout/core/messages.hpp"
+#include "stereoscout/core/ring_buffer.hpp"
+#include "stereoscout/host_sim/ground_truth.hpp"
+#include "stereoscout/host_sim/renderer.hpp"
+#include "stereoscout/host_sim/world.hpp"
+#include "stereoscout/platform/camera.hpp"
+#include "stereoscout/platform/clock.hpp"
+#include "stereoscout/platform/drive.hpp"
+#include "stereoscout/platform/odometry.hpp"
+
+namespace stereoscout::host_sim {
+
+// One odometry reading with the true pose at the same instant.
+struct OdometrySample {
+  core::OdometryReading reading;
+  core::Pose2 true_pose;
+};
+
+class Simulator {
+ public:
+  // `world` must outlive the simulator. Allocates the renderer and queues. `seed` is run.seed.
+  // The camera config must pass check_camera_supported().
+  Simulator(const World& world, const core::RobotConfig& robot, const core::CameraConfig& camera,
+            const core::SimConfig& sim, std::uint64_t seed);
+
+  // Advances simulated time by dt_s (> 0) in steps of at most sim.step_s.
+  void step(double dt_s);
+  // Advances simulated time to `time_ns` (no-op if it is not in the future).
+  void step_to(std::int64_t time_ns);
+
+  // Drive interface: velocities are clamped to the robot's limits.
+  void command(const core::DriveCommand& command);
+  core::DriveCommand current_command() const { return command_; }
+  void command_pan(double pan_rad);
+
+  // Renders the current view into `frame` (images allocated by the caller at the camera size)
+  // and, if given, the ground-truth depth of the right image. Counts frames.
+  void render_frame(core::StereoFrame& frame, cv::Mat* depth_right = nullptr);
+  // Odometry readings produced so far and not yet taken (oldest first).
+  bool pop_odometry(OdometrySample& sample);
+
+  std::int64_t time_ns() const { return time_ns_; }
+  double time_s() const { return static_cast<double>(time_ns_) * 1e-9; }
+  const core::Pose2& true_pose() const { return pose_; }
+  const core::Pose2& odometry_pose() const { return odometry_pose_; }
+  double pan_rad() const { return pan_rad_; }
+  std::uint64_t collision_count() const { return collisions_; }
+  std::uint64_t odometry_dropped() const { return odometry_queue_.overwritten(); }
+  std::uint64_t frames_rendered() const { return frames_; }
+  double distance_travelled_m() const { return distance_m_; }
+  const World& world() const { return world_; }
+  const core::CameraConfig& camera_config() const { return camera_; }
+  StereoRenderer& renderer() { return renderer_; }
+
+  // Places the robot (start-up and tests); resets the odometry pose to the same pose.
+  void teleport(const core::Pose2& pose);
+
+ private:
+  void integrate(double dt_s);
+  bool collides(const Eigen::Vector2d& position) const;
+  void emit_odometry();
+
+  const World& world_;
+  core::RobotConfig robot_;
+  core::CameraConfig camera_;
+  core::SimConfig sim_;
+  std::uint64_t seed_;
+  ObstacleBand obstacles_;
+  StereoRenderer renderer_;
+  core::RingBuffer<OdometrySample> odometry_queue_;
+  std::int64_t time_ns_ = 0;
+  core::Pose2 pose_;
+  core::Pose2 odometry_pose_;
+  core::Pose2 pose_at_last_reading_;
+  std::int64_t next_odometry_ns_ = 0;
+  std::uint32_t odometry_sequence_ = 0;
+  core::DriveCommand command_;
+  double pan_rad_ = 0.0;
+  double pan_target_rad_ = 0.0;
+  std::uint64_t collisions_ = 0;
+  std::uint64_t frames_ = 0;
+  double distance_m_ = 0.0;
+};
+
+// A camera that delivers a new pair every 1 / camera.frame_rate_hz of simulated time.
+class SimCamera final : public platform::Camera {
+ public:
+  explicit SimCamera(Simulator& simulator);
+  core::Status capture(core::StereoFrame& frame) override;
+  void command_pan(double pan_rad) override { simulator_.command_pan(pan_rad); }
+
+ private:
+  Simulator& simulator_;
+  std::int64_t next_frame_ns_ = 0;
+};
+
+class SimOdometry final : public platform::Odometry {
+ public:
+  explicit SimOdometry(Simulator& simulator) : simulator_(simulator) {}
+  core::Status read(core::OdometryReading& reading) override;
+  // The true pose at the time of the last reading returned (ground-truth pose stream).
+  const core::Pose2& last_true_pose() const { return last_true_pose_; }
+
+ private:
+  Simulator& simulator_;
+  core::Pose2 last_true_pose_;
+};
+
+class SimDrive final : public platform::Drive {
+ public:
+  explicit SimDrive(Simulator& simulator) : simulator_(simulator) {}
+  core::Status command(const core::DriveCommand& command) override;
+  core::Status stop() override;
+
+ private:
+  Simulator& simulator_;
+};
+
+// Virtual clock: sleeping advances the simulation to the deadline.
+class SimClock final : public platform::Clock {
+ public:
+  explicit SimClock(Simulator& simulator) : simulator_(simulator) {}
+  std::int64_t now_ns() const override { return simulator_.time_ns(); }
+  void sleep_until(std::int64_t deadline_ns) override;
+
+ private:
+  Simulator& simulator_;
+};
+
+}  // namespace stereoscout::host_sim

@@ -1,0 +1,175 @@
+#include "stereoscout/host_sim/simulator.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "stereoscout/core/random.hpp"
+
+namespace stereoscout::host_sim {
+namespace {
+
+std::int64_t seconds_to_ns(double seconds) { return static_cast<std::int64_t>(std::llround(seconds * 1e9)); }
+
+// The odometry's view of a true motion `delta` (robot frame) under a floor's noise model:
+// random errors are a random walk (variance proportional to distance and turned angle),
+// systematic ones a scale error and a heading drift per metre.
+core::Pose2 corrupt_motion(const core::Pose2& delta, const core::OdometryNoiseConfig& noise, core::RandomStream& random) {
+  const double distance = std::hypot(delta.x, delta.y);
+  const double turned = std::abs(delta.theta);
+  const double distance_sigma = noise.translation_sigma_m_per_sqrt_m * std::sqrt(distance);
+  const double rotation_sigma = std::sqrt(noise.rotation_sigma_rad_per_sqrt_rad * noise.rotation_sigma_rad_per_sqrt_rad * turned +
+                                          noise.rotation_sigma_rad_per_sqrt_m * noise.rotation_sigma_rad_per_sqrt_m * distance);
+  const double measured_distance = distance * (1.0 + noise.scale_error) + distance_sigma * random.gaussian();
+  const double measured_rotation = delta.theta + core::degrees_to_radians(noise.drift_deg_per_m) * distance +
+                                   rotation_sigma * random.gaussian();
+  const double scale = distance > 0.0 ? measured_distance / distance : 0.0;
+  return core::Pose2{delta.x * scale, delta.y * scale, core::wrap_angle(measured_rotation)};
+}
+
+}  // namespace
+
+Simulator::Simulator(const World& world, const core::RobotConfig& robot, const core::CameraConfig& camera,
+                     const core::SimConfig& sim, std::uint64_t seed)
+    : world_(world),
+      robot_(robot),
+      camera_(camera),
+      sim_(sim),
+      seed_(seed),
+      obstacles_(world, sim.floor_tolerance_m, robot.height_m),
+      renderer_(world, camera, sim, seed),
+      odometry_queue_(static_cast<std::size_t>(sim.odometry_queue)) {
+  teleport(world.start);
+}
+
+void Simulator::teleport(const core::Pose2& pose) {
+  pose_ = pose;
+  odometry_pose_ = pose;
+  pose_at_last_reading_ = pose;
+  next_odometry_ns_ = time_ns_ + seconds_to_ns(1.0 / robot_.odometry_rate_hz);
+}
+
+void Simulator::command(const core::DriveCommand& command) {
+  const double max_turn = core::degrees_to_radians(robot_.max_turn_rate_deg_s);
+  command_.linear_mps = std::clamp(command.linear_mps, -robot_.max_speed_mps, robot_.max_speed_mps);
+  command_.angular_rad_s = std::clamp(command.angular_rad_s, -max_turn, max_turn);
+  if (!std::isfinite(command_.linear_mps) || !std::isfinite(command_.angular_rad_s)) command_ = core::DriveCommand{};
+}
+
+void Simulator::command_pan(double pan_rad) {
+  if (camera_.has_pan_unit && std::isfinite(pan_rad)) pan_target_rad_ = core::wrap_angle(pan_rad);
+}
+
+bool Simulator::collides(const Eigen::Vector2d& position) const {
+  if (obstacles_.disc_collides(position, robot_.radius_m)) return true;
+  for (std::size_t i = 0; i < world_.people.size(); ++i) {
+    const Person& person = world_.people[i];
+    if ((world_.person_position(i, time_s()) - position).norm() < robot_.radius_m + person.radius) return true;
+  }
+  return false;
+}
+
+void Simulator::integrate(double dt_s) {
+  // Pan unit: turns toward its target at its rate along the shorter way.
+  const double pan_error = core::wrap_angle(pan_target_rad_ - pan_rad_);
+  const double pan_step = core::degrees_to_radians(camera_.pan_rate_deg_s) * dt_s;
+  pan_rad_ = core::wrap_angle(pan_rad_ + std::clamp(pan_error, -pan_step, pan_step));
+  if (command_.linear_mps == 0.0 && command_.angular_rad_s == 0.0) return;
+  // Unicycle, midpoint heading (exact for straight lines and turns in place).
+  const double turn = command_.angular_rad_s * dt_s;
+  const double heading = pose_.theta + 0.5 * turn;
+  const double travel = command_.linear_mps * dt_s;
+  const core::Pose2 next{pose_.x + travel * std::cos(heading), pose_.y + travel * std::sin(heading),
+                         core::wrap_angle(pose_.theta + turn)};
+  if (collides(next.translation())) {
+    ++collisions_;
+    command_ = core::DriveCommand{};
+    return;
+  }
+  pose_ = next;
+  distance_m_ += std::abs(travel);
+}
+
+void Simulator::emit_odometry() {
+  const core::Pose2 delta = pose_at_last_reading_.between(pose_);
+  const core::OdometryNoiseConfig& noise =
+      world_.floor_type_at(pose_.translation()) == FloorType::carpet ? sim_.carpet : sim_.tile;
+  core::RandomStream random(seed_, {core::stream_purpose::sim_odometry, odometry_sequence_, 0});
+  odometry_pose_ = odometry_pose_.compose(corrupt_motion(delta, noise, random));
+  pose_at_last_reading_ = pose_;
+  OdometrySample& sample = odometry_queue_.next_slot_overwrite();
+  sample.reading.timestamp_ns = time_ns_;
+  sample.reading.sequence = odometry_sequence_++;
+  sample.reading.pose = odometry_pose_;
+  sample.true_pose = pose_;
+}
+
+void Simulator::step(double dt_s) {
+  if (dt_s > 0.0) step_to(time_ns_ + seconds_to_ns(dt_s));
+}
+
+void Simulator::step_to(std::int64_t end_ns) {
+  const std::int64_t max_step_ns = std::max<std::int64_t>(1, seconds_to_ns(sim_.step_s));
+  const std::int64_t odometry_period_ns = std::max<std::int64_t>(1, seconds_to_ns(1.0 / robot_.odometry_rate_hz));
+  while (time_ns_ < end_ns) {
+    const std::int64_t step_ns = std::min({max_step_ns, end_ns - time_ns_, next_odometry_ns_ - time_ns_});
+    integrate(static_cast<double>(step_ns) * 1e-9);
+    time_ns_ += step_ns;
+    if (time_ns_ >= next_odometry_ns_) {
+      emit_odometry();
+      next_odometry_ns_ += odometry_period_ns;
+    }
+  }
+}
+
+void Simulator::render_frame(core::StereoFrame& frame, cv::Mat* depth_right) {
+  renderer_.render(pose_, pan_rad_, time_s(), static_cast<std::uint32_t>(frames_), frame.left, frame.right, depth_right);
+  frame.timestamp_ns = time_ns_;
+  frame.sequence = frames_++;
+  frame.pan_rad = pan_rad_;
+}
+
+bool Simulator::pop_odometry(OdometrySample& sample) {
+  if (odometry_queue_.empty()) return false;
+  sample = odometry_queue_.front();
+  odometry_queue_.pop_front();
+  return true;
+}
+
+SimCamera::SimCamera(Simulator& simulator) : simulator_(simulator), next_frame_ns_(simulator.time_ns()) {}
+
+core::Status SimCamera::capture(core::StereoFrame& frame) {
+  if (simulator_.time_ns() < next_frame_ns_) return {core::StatusCode::not_available, "no new stereo pair yet"};
+  const core::CameraConfig& camera = simulator_.camera_config();
+  if (frame.left.rows != camera.height_px || frame.left.cols != camera.width_px || frame.left.type() != CV_8UC1 ||
+      frame.right.rows != camera.height_px || frame.right.cols != camera.width_px || frame.right.type() != CV_8UC1) {
+    return {core::StatusCode::invalid_input, "frame images not allocated at the camera size"};
+  }
+  simulator_.render_frame(frame);
+  const auto period_ns = static_cast<std::int64_t>(std::llround(1e9 / camera.frame_rate_hz));
+  next_frame_ns_ = std::max(next_frame_ns_ + period_ns, simulator_.time_ns() - period_ns + 1);
+  return core::Status::success();
+}
+
+core::Status SimOdometry::read(core::OdometryReading& reading) {
+  OdometrySample sample;
+  if (!simulator_.pop_odometry(sample)) return {core::StatusCode::not_available, "no new odometry reading"};
+  reading = sample.reading;
+  last_true_pose_ = sample.true_pose;
+  return core::Status::success();
+}
+
+core::Status SimDrive::command(const core::DriveCommand& command) {
+  simulator_.command(command);
+  return core::Status::success();
+}
+
+core::Status SimDrive::stop() {
+  simulator_.command(core::DriveCommand{});
+  return core::Status::success();
+}
+
+void SimClock::sleep_until(std::int64_t deadline_ns) {
+  simulator_.step_to(deadline_ns);
+}
+
+}  // namespace stereoscout::host_sim
