@@ -1,6 +1,7 @@
 #include "stereoscout/vision/dense_disparity.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <limits>
 
@@ -84,7 +85,7 @@ void DenseDisparityMatcher::texture_integral(const cv::Mat& left) {
     for (int x = 0; x < width_; ++x) {
       const int before = row[std::max(x - 1, 0)];
       const int after = row[std::min(x + 1, width_ - 1)];
-      row_sum += std::abs(after - before) / 2;
+      row_sum += std::abs(after - before);
       out[x + 1] = above[x + 1] + row_sum;
     }
   }
@@ -216,7 +217,10 @@ void DenseDisparityMatcher::compute(const cv::Mat& left, const cv::Mat& right, c
                     "DenseDisparityMatcher::compute: output not allocated (allocate_output)");
   stats_ = DenseDisparityStats{};
   stats_.pixels = static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_);
-  disparity.setTo(kInvalidDisparity);
+  for (int y = 0; y < height_; ++y) {
+    float* row = disparity.ptr<float>(y);
+    std::fill(row, row + width_, kInvalidDisparity);  // cv::Mat::setTo would allocate
+  }
   census_transform(left, census_left_);
   census_transform(right, census_right_);
   texture_integral(left);
@@ -251,6 +255,42 @@ void DenseDisparityMatcher::compute(const cv::Mat& left, const cv::Mat& right, c
   }
   stats_.border = stats_.pixels - stats_.valid - stats_.rejected_texture - stats_.rejected_uniqueness -
                   stats_.rejected_left_right;
+}
+
+DisparityScore score_disparity(const cv::Mat& disparity, const cv::Mat& ground_truth, double scale) {
+  STEREOSCOUT_CHECK(disparity.type() == CV_32FC1 && disparity.size() == ground_truth.size() &&
+                        (ground_truth.type() == CV_8UC1 || ground_truth.type() == CV_16UC1),
+                    "score_disparity: maps of different sizes or types");
+  DisparityScore score;
+  std::size_t bad_1 = 0;
+  std::size_t bad_2 = 0;
+  for (int y = 0; y < disparity.rows; ++y) {
+    for (int x = 0; x < disparity.cols; ++x) {
+      const double raw = ground_truth.type() == CV_8UC1 ? ground_truth.at<std::uint8_t>(y, x)
+                                                        : ground_truth.at<std::uint16_t>(y, x);
+      if (raw <= 0.0) {
+        continue;
+      }
+      ++score.known;
+      const float value = disparity.at<float>(y, x);
+      if (value < 0.0F) {
+        continue;
+      }
+      ++score.valid;
+      const double error = std::abs(static_cast<double>(value) - raw / scale);
+      bad_1 += error > 1.0 ? 1U : 0U;
+      bad_2 += error > 2.0 ? 1U : 0U;
+    }
+  }
+  if (score.valid > 0) {
+    score.bad_1 = static_cast<double>(bad_1) / static_cast<double>(score.valid);
+    score.bad_2 = static_cast<double>(bad_2) / static_cast<double>(score.valid);
+  }
+  if (score.known > 0) {
+    score.density = static_cast<double>(score.valid) / static_cast<double>(score.known);
+    score.bad_2_all = static_cast<double>(bad_2 + score.known - score.valid) / static_cast<double>(score.known);
+  }
+  return score;
 }
 
 }  // namespace stereoscout::vision

@@ -29,7 +29,7 @@ struct DenseDisparityParams {
   int num_disparities = 64;
   int window_px = 7;
   double uniqueness_ratio = 0.05;
-  double min_texture = 6.0;
+  double min_texture = 1.0;
   int lr_tolerance_px = 1;
 };
 
@@ -80,5 +80,19 @@ class DenseDisparityMatcher {
   std::vector<std::int32_t> gradient_integral_;  // (width + 1) x (height + 1)
   DenseDisparityStats stats_;
 };
+
+// Scores a left-referenced disparity map against ground truth (Middlebury convention: a
+// ground-truth value of 0 is unknown; the true disparity is value / scale).
+struct DisparityScore {
+  std::size_t known = 0;      // pixels with ground truth
+  std::size_t valid = 0;      // of those, pixels the matcher gave a value
+  double bad_1 = 0.0;         // fraction of valid known pixels off by more than 1 px
+  double bad_2 = 0.0;         // ... by more than 2 px
+  double density = 0.0;       // valid / known
+  double bad_2_all = 0.0;     // invalid pixels counted as bad (the benchmark's "all" view)
+};
+
+// disparity: CV_32FC1; ground_truth: CV_8UC1 or CV_16UC1 of the same size.
+DisparityScore score_disparity(const cv::Mat& disparity, const cv::Mat& ground_truth, double scale);
 
 }  // namespace stereoscout::vision

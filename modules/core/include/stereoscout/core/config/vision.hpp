@@ -14,6 +14,7 @@ struct VisionConfig {
   double min_disparity_px = 1.0;
   double max_disparity_px = 128.0;
   double match_ratio = 0.8;
+  bool stereo_cross_check = true;
   int index_capacity = 100000;
   int candidate_min_frames = 3;
   int index_max_leaf_checks = 64;
@@ -32,7 +33,7 @@ struct VisionConfig {
   int dense_num_disparities = 64;
   int dense_window_px = 7;
   double dense_uniqueness_ratio = 0.05;
-  double dense_min_texture = 6.0;
+  double dense_min_texture = 1.0;
   int dense_lr_tolerance_px = 1;
   int scan_min_obstacle_pixels = 4;
 };
@@ -47,6 +48,7 @@ inline void describe(ConfigVisitor& v, VisionConfig& c) {
   v.number("min_disparity_px", c.min_disparity_px, {0.1, 1000.0, "px", "Smallest disparity accepted (bounds the farthest point)."});
   v.number("max_disparity_px", c.max_disparity_px, {1.0, 1000.0, "px", "Largest disparity accepted (bounds the nearest point)."});
   v.number("match_ratio", c.match_ratio, {0.1, 1.0, "", "Distinctiveness test: best distance below this times the second best."});
+  v.boolean("stereo_cross_check", c.stereo_cross_check, "Keep a stereo match only if the left key's best right key is the same key (mutual best; removes false matches on repetitive texture).");
   v.integer_field("index_capacity", c.index_capacity, {16, 10000000, "", "Descriptors the index holds (landmarks and candidates)."});
   v.integer_field("candidate_min_frames", c.candidate_min_frames, {1, 100, "frames", "A new key becomes a landmark after being seen in this many frames."});
   v.integer_field("index_max_leaf_checks", c.index_max_leaf_checks, {1, 100000, "", "Best-bin-first search: leaves examined per query."});
@@ -62,7 +64,7 @@ inline void describe(ConfigVisitor& v, VisionConfig& c) {
   v.integer_field("dense_num_disparities", c.dense_num_disparities, {2, 512, "px", "Disparities searched by the dense block matcher (0 .. N-1)."});
   v.integer_field("dense_window_px", c.dense_window_px, {1, 31, "px", "Side of the square window over which census costs are summed (odd)."});
   v.number("dense_uniqueness_ratio", c.dense_uniqueness_ratio, {0.0, 2.0, "", "A pixel is invalid unless the best cost times (1 + this) is below every non-adjacent disparity's cost."});
-  v.number("dense_min_texture", c.dense_min_texture, {0.0, 255.0, "grey levels", "A pixel is invalid when the mean absolute horizontal gradient in its window is below this."});
+  v.number("dense_min_texture", c.dense_min_texture, {0.0, 255.0, "grey levels", "A pixel is invalid when the mean absolute horizontal central difference in its window is below this."});
   v.integer_field("dense_lr_tolerance_px", c.dense_lr_tolerance_px, {0, 16, "px", "Left-right consistency: largest difference between the left and the right disparity."});
   v.integer_field("scan_min_obstacle_pixels", c.scan_min_obstacle_pixels, {1, 100, "px", "Pixels of a column that must lie above the floor before the nearest of them counts as an obstacle (rejects isolated mismatches)."});
   v.require(c.dense_window_px % 2 == 1, "dense_window_px", "must be odd");

@@ -1,0 +1,154 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "stereoscout/core/allocation_counter.hpp"
+#include "stereoscout/core/random.hpp"
+#include "stereoscout/test/paths.hpp"
+#include "stereoscout/vision/dense_disparity.hpp"
+
+namespace stereoscout::vision {
+namespace {
+
+// Smooth random texture (blurred white noise, stretched).
+cv::Mat random_texture(int width, int height, std::uint32_t seed) {
+  cv::Mat noise(height, width, CV_32FC1);
+  core::RandomStream random(seed, core::StreamId{0, 0, 0});
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      noise.at<float>(y, x) = static_cast<float>(random.uniform());
+    }
+  }
+  cv::GaussianBlur(noise, noise, cv::Size(0, 0), 1.2);
+  cv::Mat image;
+  cv::normalize(noise, noise, 0.0, 255.0, cv::NORM_MINMAX);
+  noise.convertTo(image, CV_8UC1);
+  return image;
+}
+
+// Left image of a fronto-parallel plane at constant disparity: left(x) = right(x - d).
+cv::Mat shift_right_image(const cv::Mat& right, double disparity) {
+  cv::Mat map_x(right.size(), CV_32FC1);
+  cv::Mat map_y(right.size(), CV_32FC1);
+  for (int y = 0; y < right.rows; ++y) {
+    for (int x = 0; x < right.cols; ++x) {
+      map_x.at<float>(y, x) = static_cast<float>(x - disparity);
+      map_y.at<float>(y, x) = static_cast<float>(y);
+    }
+  }
+  cv::Mat left;
+  cv::remap(right, left, map_x, map_y, cv::INTER_CUBIC, cv::BORDER_REFLECT);
+  return left;
+}
+
+TEST(DenseDisparity, RecoversAPlaneToSubpixelWithoutAllocating) {
+  const cv::Mat right = random_texture(320, 240, 11);
+  const double truth = 17.4;
+  const cv::Mat left = shift_right_image(right, truth);
+  DenseDisparityMatcher matcher(DenseDisparityParams{}, 320, 240);
+  cv::Mat disparity;
+  matcher.allocate_output(disparity);
+  const core::AllocationScope scope;
+  matcher.compute(left, right, disparity);
+  EXPECT_EQ(scope.allocations(), 0U);
+  std::size_t valid = 0;
+  std::size_t within = 0;
+  double sum_error = 0.0;
+  // Pixels whose search range covers the true disparity.
+  for (int y = 0; y < 240; ++y) {
+    for (int x = 40; x < 320; ++x) {
+      const float d = disparity.at<float>(y, x);
+      if (d < 0.0F) continue;
+      ++valid;
+      within += std::fabs(d - truth) < 0.5 ? 1U : 0U;
+      sum_error += std::fabs(d - truth);
+    }
+  }
+  const double interior = static_cast<double>((240 - 12) * (320 - 40 - 6));
+  EXPECT_GT(static_cast<double>(valid), 0.9 * interior);
+  EXPECT_GT(static_cast<double>(within), 0.98 * static_cast<double>(valid));
+  EXPECT_LT(sum_error / static_cast<double>(valid), 0.25);  // subpixel refinement works
+  EXPECT_EQ(matcher.stats().valid + matcher.stats().rejected_texture + matcher.stats().rejected_uniqueness +
+                matcher.stats().rejected_left_right + matcher.stats().border,
+            matcher.stats().pixels);
+}
+
+TEST(DenseDisparity, UntexturedAreaIsInvalidNotGuessed) {
+  cv::Mat right = random_texture(200, 120, 12);
+  right(cv::Rect(80, 30, 60, 60)).setTo(100);
+  const cv::Mat left = shift_right_image(right, 10.0);
+  DenseDisparityMatcher matcher(DenseDisparityParams{}, 200, 120);
+  cv::Mat disparity;
+  matcher.allocate_output(disparity);
+  matcher.compute(left, right, disparity);
+  // The flat patch (seen in the left image at x + 10) well inside its border: all invalid.
+  for (int y = 40; y < 80; ++y) {
+    for (int x = 100; x < 140; ++x) {
+      EXPECT_LT(disparity.at<float>(y, x), 0.0F) << "at " << x << "," << y;
+    }
+  }
+  EXPECT_GT(matcher.stats().rejected_texture, 1000U);
+}
+
+TEST(DenseDisparity, ScoreCountsBadPixelsAndDensity) {
+  cv::Mat disparity(1, 4, CV_32FC1);
+  disparity.at<float>(0, 0) = 10.0F;   // exact
+  disparity.at<float>(0, 1) = 11.5F;   // off by 1.5: bad-1 only
+  disparity.at<float>(0, 2) = 13.0F;   // off by 3: bad-1 and bad-2
+  disparity.at<float>(0, 3) = kInvalidDisparity;
+  cv::Mat truth(1, 4, CV_8UC1, cv::Scalar(40));  // scale 4: disparity 10
+  const DisparityScore score = score_disparity(disparity, truth, 4.0);
+  EXPECT_EQ(score.known, 4U);
+  EXPECT_EQ(score.valid, 3U);
+  EXPECT_DOUBLE_EQ(score.bad_1, 2.0 / 3.0);
+  EXPECT_DOUBLE_EQ(score.bad_2, 1.0 / 3.0);
+  EXPECT_DOUBLE_EQ(score.density, 0.75);
+  EXPECT_DOUBLE_EQ(score.bad_2_all, 0.5);
+}
+
+// Real pairs: the figures go to docs/results.md; the bounds only catch a broken matcher.
+TEST(DenseDisparity, MiddleburyPairs) {
+  struct Pair {
+    const char* scene;
+    const char* left;
+    const char* right;
+    const char* truth;
+    double scale;
+    int disparities;
+  };
+  const Pair pairs[] = {{"tsukuba", "im3.png", "im4.png", "disp3.pgm", 16.0, 16},
+                        {"venus", "im2.png", "im6.png", "disp2.pgm", 8.0, 20},
+                        {"teddy", "im2.png", "im6.png", "disp2.png", 4.0, 60},
+                        {"cones", "im2.png", "im6.png", "disp2.png", 4.0, 60}};
+  const std::string folder = test::data_path("middlebury");
+  if (folder.empty()) {
+    GTEST_SKIP() << "Middlebury pairs not found under " << test::data_dir() << "/middlebury";
+  }
+  for (const Pair& pair : pairs) {
+    const std::string base = folder + "/" + pair.scene + "/";
+    const cv::Mat left = cv::imread(base + pair.left, cv::IMREAD_GRAYSCALE);
+    const cv::Mat right = cv::imread(base + pair.right, cv::IMREAD_GRAYSCALE);
+    const cv::Mat truth = cv::imread(base + pair.truth, cv::IMREAD_UNCHANGED);
+    ASSERT_FALSE(left.empty() || right.empty() || truth.empty()) << "cannot read " << base;
+    DenseDisparityParams params;
+    params.num_disparities = pair.disparities;
+    DenseDisparityMatcher matcher(params, left.cols, left.rows);
+    cv::Mat disparity;
+    matcher.allocate_output(disparity);
+    matcher.compute(left, right, disparity);
+    const DisparityScore score = score_disparity(disparity, truth, pair.scale);
+    std::printf("middlebury %-8s bad-1.0 %.3f bad-2.0 %.3f density %.3f (texture %zu uniqueness %zu left-right %zu border %zu of %zu)\n",
+                pair.scene, score.bad_1, score.bad_2, score.density, matcher.stats().rejected_texture,
+                matcher.stats().rejected_uniqueness, matcher.stats().rejected_left_right, matcher.stats().border,
+                matcher.stats().pixels);
+    EXPECT_LT(score.bad_2, 0.08) << pair.scene;
+    EXPECT_GT(score.density, 0.7) << pair.scene;
+  }
+}
+
+}  // namespace
+}  // namespace stereoscout::vision
