@@ -14,6 +14,12 @@ struct FilterConfig {
   double motion_noise_rotation_per_rad = 0.05;
   double motion_noise_rotation_per_m = 0.02;
   double motion_noise_translation_per_rad = 0.01;
+  int landmark_node_capacity = 4000000;
+  int landmark_estimate_capacity = 2000000;
+  int trajectory_node_capacity = 1000000;
+  int estimates_per_landmark = 4;
+  int max_observations_per_update = 1000;
+  int export_min_observations = 4;
 };
 
 inline void describe(ConfigVisitor& v, FilterConfig& c) {
@@ -27,6 +33,12 @@ inline void describe(ConfigVisitor& v, FilterConfig& c) {
   v.number("motion_noise_rotation_per_rad", c.motion_noise_rotation_per_rad, {0.0, 2.0, "rad/rad", "Standard deviation of rotation noise per radian turned."});
   v.number("motion_noise_rotation_per_m", c.motion_noise_rotation_per_m, {0.0, 2.0, "rad/m", "Standard deviation of rotation noise per metre driven."});
   v.number("motion_noise_translation_per_rad", c.motion_noise_translation_per_rad, {0.0, 2.0, "m/rad", "Standard deviation of translation noise per radian turned."});
+  v.integer_field("landmark_node_capacity", c.landmark_node_capacity, {1, 1000000000, "", "Nodes of the shared landmark trees of all particles (FastSLAM tree, O(N log K)); when short, a particle's change to one landmark is refused and counted."});
+  v.integer_field("landmark_estimate_capacity", c.landmark_estimate_capacity, {1, 1000000000, "", "3D Gaussian landmark estimates shared by all particles; when short, the new estimate or update is refused and counted."});
+  v.integer_field("trajectory_node_capacity", c.trajectory_node_capacity, {1, 1000000000, "", "Nodes of the particles' ancestry tree (one per particle per update, freed when no particle descends from them); when fewer than `particles` are free the update is refused and counted, and the motion carries over to the next."});
+  v.integer_field("estimates_per_landmark", c.estimates_per_landmark, {1, 4, "", "Spatially distinct estimates one landmark identity may hold (paper Fig. 1); further distinct sightings are refused and counted."});
+  v.integer_field("max_observations_per_update", c.max_observations_per_update, {1, 100000, "", "Landmark observations one update takes; more are dropped and counted."});
+  v.integer_field("export_min_observations", c.export_min_observations, {1, 1000000, "", "An estimate goes into landmarks.ply once it has fused this many observations (4: seen more than 3 times)."});
   v.require(c.particles <= c.particle_capacity, "particles", "must not exceed particle_capacity");
   v.end_section();
 }
