@@ -13,8 +13,34 @@ namespace {
 constexpr int kCensusRadius = 3;  // 7x7 census: 48 comparisons, fits 64 bits
 constexpr std::uint8_t kMaxCensusCost = 48;
 
-inline std::uint8_t hamming(std::uint64_t a, std::uint64_t b) {
-  return static_cast<std::uint8_t>(__builtin_popcountll(a ^ b));
+// Census costs of one disparity over a row: out[x] = popcount(left[x] ^ right[x - d]).
+// Integer popcount is exact, so the hardware instruction (chosen at run time where the CPU
+// has it) gives the same result as the portable version.
+void census_costs_portable(const std::uint64_t* left, const std::uint64_t* right, std::uint8_t* out, int first,
+                           int width, int d) {
+  for (int x = first; x < width; ++x) {
+    out[x] = static_cast<std::uint8_t>(__builtin_popcountll(left[x] ^ right[x - d]));
+  }
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+__attribute__((target("popcnt"))) void census_costs_popcnt(const std::uint64_t* left, const std::uint64_t* right,
+                                                           std::uint8_t* out, int first, int width, int d) {
+  for (int x = first; x < width; ++x) {
+    out[x] = static_cast<std::uint8_t>(__builtin_popcountll(left[x] ^ right[x - d]));
+  }
+}
+#endif
+
+using CensusCostKernel = void (*)(const std::uint64_t*, const std::uint64_t*, std::uint8_t*, int, int, int);
+
+CensusCostKernel choose_census_kernel() {
+#if defined(__x86_64__) && defined(__GNUC__)
+  if (__builtin_cpu_supports("popcnt")) {
+    return census_costs_popcnt;
+  }
+#endif
+  return census_costs_portable;
 }
 
 }  // namespace
@@ -43,8 +69,12 @@ DenseDisparityMatcher::DenseDisparityMatcher(const DenseDisparityParams& params,
   cost_ring_.resize(row_costs * static_cast<std::size_t>(2 * radius_ + 1));
   column_sums_.resize(row_costs);
   aggregated_.resize(row_costs);
-  right_winner_.resize(static_cast<std::size_t>(width_));
-  left_winner_.resize(static_cast<std::size_t>(width_));
+  best_cost_.resize(static_cast<std::size_t>(width_));
+  second_cost_.resize(static_cast<std::size_t>(width_));
+  best_disparity_.resize(static_cast<std::size_t>(width_));
+  right_best_cost_.resize(static_cast<std::size_t>(width_));
+  right_best_disparity_.resize(static_cast<std::size_t>(width_));
+  census_cost_kernel_ = choose_census_kernel();
   gradient_integral_.resize(static_cast<std::size_t>(width_ + 1) * static_cast<std::size_t>(height_ + 1));
 }
 
@@ -52,22 +82,26 @@ void DenseDisparityMatcher::allocate_output(cv::Mat& disparity) const {
   disparity.create(height_, width_, CV_32FC1);
 }
 
+// Loops over the 48 neighbour offsets outside the pixel loop, so the inner loop is a
+// straight compare-and-shift over a row (vectorised by the compiler).
 void DenseDisparityMatcher::census_transform(const cv::Mat& image, std::vector<std::uint64_t>& census) const {
   std::fill(census.begin(), census.end(), 0);
+  const int first = kCensusRadius;
+  const int last = width_ - kCensusRadius;
   for (int y = kCensusRadius; y < height_ - kCensusRadius; ++y) {
-    for (int x = kCensusRadius; x < width_ - kCensusRadius; ++x) {
-      const std::uint8_t centre = image.at<std::uint8_t>(y, x);
-      std::uint64_t bits = 0;
-      for (int dy = -kCensusRadius; dy <= kCensusRadius; ++dy) {
-        const std::uint8_t* row = image.ptr<std::uint8_t>(y + dy);
-        for (int dx = -kCensusRadius; dx <= kCensusRadius; ++dx) {
-          if (dx == 0 && dy == 0) {
-            continue;
-          }
-          bits = (bits << 1U) | (row[x + dx] < centre ? 1U : 0U);
+    std::uint64_t* bits = &census[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_)];
+    const std::uint8_t* centre = image.ptr<std::uint8_t>(y);
+    for (int dy = -kCensusRadius; dy <= kCensusRadius; ++dy) {
+      const std::uint8_t* row = image.ptr<std::uint8_t>(y + dy);
+      for (int dx = -kCensusRadius; dx <= kCensusRadius; ++dx) {
+        if (dx == 0 && dy == 0) {
+          continue;
+        }
+        const std::uint8_t* neighbour = row + dx;
+        for (int x = first; x < last; ++x) {
+          bits[x] = (bits[x] << 1U) | static_cast<std::uint64_t>(neighbour[x] < centre[x]);
         }
       }
-      census[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x)] = bits;
     }
   }
 }
@@ -115,24 +149,22 @@ void DenseDisparityMatcher::cost_row(int y, std::uint8_t* costs) const {
     for (int x = 0; x < first; ++x) {
       out[x] = kMaxCensusCost;
     }
-    for (int x = first; x < width_; ++x) {
-      out[x] = hamming(left[x], right[x - d]);
-    }
+    census_cost_kernel_(left, right, out, first, width_, d);
   }
 }
 
-// Horizontal box sum of the column sums, transposed to [x][d] for the winner search.
+// Horizontal box sum of the column sums, per disparity.
 void DenseDisparityMatcher::aggregate_row() {
   const int window = 2 * radius_ + 1;
   for (int d = 0; d < disparities_; ++d) {
     const std::uint16_t* column = &column_sums_[static_cast<std::size_t>(d) * static_cast<std::size_t>(width_)];
+    std::uint16_t* out = &aggregated_[static_cast<std::size_t>(d) * static_cast<std::size_t>(width_)];
     std::uint32_t sum = 0;
     for (int x = 0; x < window && x < width_; ++x) {
       sum += column[x];
     }
     for (int x = radius_; x < width_ - radius_; ++x) {
-      aggregated_[static_cast<std::size_t>(x) * static_cast<std::size_t>(disparities_) + static_cast<std::size_t>(d)] =
-          static_cast<std::uint16_t>(sum);
+      out[x] = static_cast<std::uint16_t>(sum);
       if (x + radius_ + 1 < width_) {
         sum += column[x + radius_ + 1];
         sum -= column[x - radius_];
@@ -141,54 +173,70 @@ void DenseDisparityMatcher::aggregate_row() {
   }
 }
 
-// Winner-take-all for one row, with subpixel refinement and the validity checks.
-void DenseDisparityMatcher::select_row(int y, float* disparity_row) {
+// Winners of one row for every left pixel (best and best non-adjacent cost) and for every
+// right pixel (for the left-right check). Disparities ascend, and only a strictly lower
+// cost replaces a winner, so ties go to the smaller disparity.
+void DenseDisparityMatcher::find_winners() {
   const int first_x = radius_ + kCensusRadius;
   const int last_x = width_ - 1 - radius_ - kCensusRadius;
-  const auto disparities = static_cast<std::size_t>(disparities_);
-  // The right image's own winners, for the left-right check: right pixel xr pairs with left
-  // pixel xr + d.
-  for (int xr = 0; xr < width_; ++xr) {
-    std::int32_t best = -1;
-    std::uint32_t best_cost = std::numeric_limits<std::uint32_t>::max();
-    if (xr >= first_x) {
-      for (int d = 0; d < disparities_ && xr + d <= last_x; ++d) {
-        const std::uint32_t cost = aggregated_[static_cast<std::size_t>(xr + d) * disparities + static_cast<std::size_t>(d)];
-        if (cost < best_cost) {
-          best_cost = cost;
-          best = d;
-        }
-      }
+  constexpr std::uint16_t kNoCost = 0xFFFF;
+  std::fill(best_cost_.begin(), best_cost_.end(), kNoCost);
+  std::fill(second_cost_.begin(), second_cost_.end(), kNoCost);
+  std::fill(best_disparity_.begin(), best_disparity_.end(), 0);
+  std::fill(right_best_cost_.begin(), right_best_cost_.end(), kNoCost);
+  std::fill(right_best_disparity_.begin(), right_best_disparity_.end(), -1);
+  for (int d = 0; d < disparities_; ++d) {
+    const std::uint16_t* costs = &aggregated_[static_cast<std::size_t>(d) * static_cast<std::size_t>(width_)];
+    const auto disparity = static_cast<std::int16_t>(d);
+    // Left pixel x searches d <= x - first_x.
+    for (int x = first_x + d; x <= last_x; ++x) {
+      const bool better = costs[x] < best_cost_[static_cast<std::size_t>(x)];
+      best_cost_[static_cast<std::size_t>(x)] = better ? costs[x] : best_cost_[static_cast<std::size_t>(x)];
+      best_disparity_[static_cast<std::size_t>(x)] = better ? disparity : best_disparity_[static_cast<std::size_t>(x)];
     }
-    right_winner_[static_cast<std::size_t>(xr)] = best;
+    // Right pixel xr pairs with left pixel xr + d.
+    const std::uint16_t* shifted = costs + d;
+    for (int xr = first_x; xr + d <= last_x; ++xr) {
+      const bool better = shifted[xr] < right_best_cost_[static_cast<std::size_t>(xr)];
+      right_best_cost_[static_cast<std::size_t>(xr)] = better ? shifted[xr] : right_best_cost_[static_cast<std::size_t>(xr)];
+      right_best_disparity_[static_cast<std::size_t>(xr)] = better ? disparity : right_best_disparity_[static_cast<std::size_t>(xr)];
+    }
   }
+  for (int d = 0; d < disparities_; ++d) {
+    const std::uint16_t* costs = &aggregated_[static_cast<std::size_t>(d) * static_cast<std::size_t>(width_)];
+    for (int x = first_x + d; x <= last_x; ++x) {
+      const int gap = d - best_disparity_[static_cast<std::size_t>(x)];
+      const bool candidate = (gap > 1 || gap < -1) && costs[x] < second_cost_[static_cast<std::size_t>(x)];
+      second_cost_[static_cast<std::size_t>(x)] = candidate ? costs[x] : second_cost_[static_cast<std::size_t>(x)];
+    }
+  }
+}
+
+// Validity checks and subpixel refinement of one row's winners.
+void DenseDisparityMatcher::select_row(int y, float* disparity_row) {
+  find_winners();
+  const int first_x = radius_ + kCensusRadius;
+  const int last_x = width_ - 1 - radius_ - kCensusRadius;
+  const auto cost_at = [&](int d, int x) {
+    return aggregated_[static_cast<std::size_t>(d) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x)];
+  };
   for (int x = first_x; x <= last_x; ++x) {
+    const auto column = static_cast<std::size_t>(x);
     const int max_d = std::min(disparities_ - 1, x - first_x);
-    const std::uint16_t* costs = &aggregated_[static_cast<std::size_t>(x) * disparities];
-    int best = 0;
-    for (int d = 1; d <= max_d; ++d) {
-      if (costs[d] < costs[best]) {
-        best = d;
-      }
-    }
-    std::uint32_t second = std::numeric_limits<std::uint32_t>::max();
-    for (int d = 0; d <= max_d; ++d) {
-      if (std::abs(d - best) > 1) {
-        second = std::min<std::uint32_t>(second, costs[d]);
-      }
-    }
+    const int best = best_disparity_[column];
+    const std::uint16_t best_cost = best_cost_[column];
+    const std::uint16_t second = second_cost_[column];
     float& out = disparity_row[x];
     out = kInvalidDisparity;
     if (!has_texture(x, y)) {
       ++stats_.rejected_texture;
       continue;
     }
-    if (second != std::numeric_limits<std::uint32_t>::max() &&
-        static_cast<double>(costs[best]) * (1.0 + params_.uniqueness_ratio) >= static_cast<double>(second)) {
+    if (second != 0xFFFF && static_cast<double>(best_cost) * (1.0 + params_.uniqueness_ratio) >= static_cast<double>(second)) {
       ++stats_.rejected_uniqueness;
       continue;
     }
-    const int right_choice = right_winner_[static_cast<std::size_t>(x - best)];
+    const int right_choice = right_best_disparity_[static_cast<std::size_t>(x - best)];
     if (right_choice < 0 || std::abs(right_choice - best) > params_.lr_tolerance_px) {
       ++stats_.rejected_left_right;
       continue;
@@ -196,9 +244,9 @@ void DenseDisparityMatcher::select_row(int y, float* disparity_row) {
     double refined = best;
     if (best > 0 && best < max_d) {
       // Parabola through the costs at best - 1, best, best + 1.
-      const double before = costs[best - 1];
-      const double at = costs[best];
-      const double after = costs[best + 1];
+      const double before = cost_at(best - 1, x);
+      const double at = best_cost;
+      const double after = cost_at(best + 1, x);
       const double curvature = before - 2.0 * at + after;
       if (curvature > 0.0) {
         refined += std::clamp(0.5 * (before - after) / curvature, -0.5, 0.5);

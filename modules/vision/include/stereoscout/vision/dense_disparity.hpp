@@ -62,6 +62,7 @@ class DenseDisparityMatcher {
   void texture_integral(const cv::Mat& left);
   void cost_row(int y, std::uint8_t* costs) const;
   void aggregate_row();
+  void find_winners();
   void select_row(int y, float* disparity_row);
   bool has_texture(int x, int y) const;
 
@@ -74,9 +75,14 @@ class DenseDisparityMatcher {
   std::vector<std::uint64_t> census_right_;
   std::vector<std::uint8_t> cost_ring_;       // window rows of [disparity][x] census costs
   std::vector<std::uint16_t> column_sums_;    // [disparity][x], summed over the window rows
-  std::vector<std::uint16_t> aggregated_;     // [x][disparity], summed over the window
-  std::vector<std::int32_t> right_winner_;    // integer disparity chosen by each right pixel
-  std::vector<std::int32_t> left_winner_;
+  std::vector<std::uint16_t> aggregated_;     // [disparity][x], summed over the window
+  // Per-column winner search state of one row (structure of arrays, so loops vectorise).
+  std::vector<std::uint16_t> best_cost_;
+  std::vector<std::uint16_t> second_cost_;
+  std::vector<std::int16_t> best_disparity_;
+  std::vector<std::uint16_t> right_best_cost_;
+  std::vector<std::int16_t> right_best_disparity_;
+  void (*census_cost_kernel_)(const std::uint64_t*, const std::uint64_t*, std::uint8_t*, int, int, int) = nullptr;
   std::vector<std::int32_t> gradient_integral_;  // (width + 1) x (height + 1)
   DenseDisparityStats stats_;
 };

@@ -1,0 +1,119 @@
+// Speed of the vision front end (issue 4): SIFT on a 640x480 pair, stereo matching, the
+// descriptor index lookup versus its size, dense disparity (640x480, 64 disparities) and the
+// 2.5D scan. Images come from the synthetic renderer of the unit tests (a textured room).
+#include <benchmark/benchmark.h>
+
+#include <vector>
+
+#include "stereoscout/core/random.hpp"
+#include "stereoscout/vision/front_end.hpp"
+#include "synthetic_stereo.hpp"
+
+namespace stereoscout::vision {
+namespace {
+
+core::CameraMount paper_mount() { return {0.10, 0.0, 0.6, 0.0}; }
+
+const test::Rendering& room_view() {
+  static const test::Rendering view =
+      test::render(test::textured_room(), StereoCalibration{}, paper_mount(), core::Pose2{0.0, 0.0, 0.1});
+  return view;
+}
+
+void BM_SiftOneImage(benchmark::State& state) {
+  SiftExtractor sift(sift_params_from_config(core::VisionConfig{}));
+  core::FixedVector<Keypoint> keys(1000);
+  for (auto _ : state) {
+    sift.extract(room_view().frame.right, keys);
+    benchmark::DoNotOptimize(keys.size());
+  }
+  state.counters["keys"] = static_cast<double>(keys.size());
+}
+BENCHMARK(BM_SiftOneImage)->Unit(benchmark::kMillisecond);
+
+// The whole landmark path of one pair: SIFT x2, matching, triangulation, index.
+void BM_FrontEndLandmarks(benchmark::State& state) {
+  core::VisionConfig config;
+  config.sift_parallel = state.range(0) != 0;
+  VisionFrontEnd front_end(config, core::RobotConfig{}, StereoCalibration{}, paper_mount());
+  core::FixedVector<core::LandmarkObservation> observations(front_end.max_observations());
+  for (auto _ : state) {
+    front_end.observe_landmarks(room_view().frame, observations);
+  }
+  state.counters["matches"] = static_cast<double>(front_end.last_frame_stats().stereo_matches);
+}
+BENCHMARK(BM_FrontEndLandmarks)->Arg(0)->Arg(1)->ArgName("parallel")->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_StereoMatching(benchmark::State& state) {
+  SiftExtractor sift(sift_params_from_config(core::VisionConfig{}));
+  core::FixedVector<Keypoint> left(1000);
+  core::FixedVector<Keypoint> right(1000);
+  sift.extract(room_view().frame.left, left);
+  sift.extract(room_view().frame.right, right);
+  StereoMatchParams params;
+  params.cross_check = state.range(0) != 0;
+  StereoMatcher matcher(params, 480, 1000);
+  core::FixedVector<StereoMatch> matches(1000);
+  for (auto _ : state) {
+    matcher.match(left, right, matches);
+    benchmark::DoNotOptimize(matches.size());
+  }
+  state.counters["matches"] = static_cast<double>(matches.size());
+}
+BENCHMARK(BM_StereoMatching)->Arg(0)->Arg(1)->ArgName("cross_check")->Unit(benchmark::kMicrosecond);
+
+// One lookup (64 leaf checks) in an index holding N random descriptors.
+void BM_IndexLookup(benchmark::State& state) {
+  const auto size = static_cast<std::size_t>(state.range(0));
+  DescriptorIndexParams params;
+  params.capacity = size;
+  params.candidate_min_frames = 1;
+  DescriptorIndex index(params);
+  core::RandomStream random(1, core::StreamId{0, 0, 0});
+  std::vector<Descriptor> queries;
+  for (std::size_t i = 0; i < size; ++i) {
+    Descriptor descriptor{};
+    for (auto& value : descriptor) value = static_cast<std::uint8_t>(random.uniform_index(64));
+    index.observe(descriptor, 0);
+    if (queries.size() < 1024) queries.push_back(descriptor);
+  }
+  std::size_t next = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(index.nearest(queries[next]));
+    next = (next + 1) % queries.size();
+  }
+  state.counters["leaves_per_lookup"] =
+      static_cast<double>(index.stats().leaves_checked) / static_cast<double>(index.stats().lookups);
+}
+BENCHMARK(BM_IndexLookup)->RangeMultiplier(10)->Range(1000, 1000000)->Unit(benchmark::kMicrosecond);
+
+void BM_DenseDisparity(benchmark::State& state) {
+  DenseDisparityMatcher matcher(dense_params_from_config(core::VisionConfig{}), 640, 480);
+  cv::Mat disparity;
+  matcher.allocate_output(disparity);
+  for (auto _ : state) {
+    matcher.compute(room_view().frame.left, room_view().frame.right, disparity);
+  }
+  state.counters["density"] = static_cast<double>(matcher.stats().valid) / static_cast<double>(matcher.stats().pixels);
+}
+BENCHMARK(BM_DenseDisparity)->Unit(benchmark::kMillisecond);
+
+void BM_ObstacleScan(benchmark::State& state) {
+  DenseDisparityMatcher matcher(dense_params_from_config(core::VisionConfig{}), 640, 480);
+  cv::Mat disparity;
+  matcher.allocate_output(disparity);
+  matcher.compute(room_view().frame.left, room_view().frame.right, disparity);
+  ObstacleScanner scanner(scan_params_from_config(core::VisionConfig{}, core::RobotConfig{}), StereoCalibration{},
+                          paper_mount());
+  core::DepthScan scan;
+  scanner.allocate(scan);
+  for (auto _ : state) {
+    scanner.compute(disparity, 0.0, 0, scan);
+  }
+}
+BENCHMARK(BM_ObstacleScan)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace stereoscout::vision
+
+BENCHMARK_MAIN();
