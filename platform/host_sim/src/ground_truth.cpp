@@ -78,10 +78,10 @@ GroundTruthGrid rasterize_world(const World& world, double resolution_m, double 
   // A cell is occupied when an obstacle comes within the cell's half diagonal of its centre
   // (then it overlaps the cell's circumscribed disc; conservative by design, as a mapper
   // marks a cell hit by any return).
-  const double half_cell = 0.5 * resolution_m;
+  const double half_diagonal = 0.5 * std::sqrt(2.0) * resolution_m;
   for (int iy = 0; iy < grid.height; ++iy) {
     for (int ix = 0; ix < grid.width; ++ix) {
-      if (band.disc_collides(grid.cell_center(ix, iy), half_cell)) grid.at(ix, iy) = GroundTruthGrid::occupied;
+      if (band.disc_collides(grid.cell_center(ix, iy), half_diagonal)) grid.at(ix, iy) = GroundTruthGrid::occupied;
     }
   }
   return grid;

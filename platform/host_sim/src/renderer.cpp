@@ -338,7 +338,8 @@ void StereoRenderer::add_noise(cv::Mat& image, std::uint32_t frame_index, std::u
     const std::int16_t* noise = noise_table_.data() + random.uniform_index(static_cast<std::uint32_t>(kNoiseTableSize));
     std::uint8_t* row = image.ptr<std::uint8_t>(r);
     for (int c = 0; c < image.cols; ++c) {
-      row[c] = static_cast<std::uint8_t>(std::clamp(row[c] + noise[c], 0, 255));
+      // A saturated pixel stays saturated: the sensor clips after its noise.
+      if (row[c] != 255) row[c] = static_cast<std::uint8_t>(std::clamp(row[c] + noise[c], 0, 255));
     }
   }
 }

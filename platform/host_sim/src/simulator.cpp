@@ -36,7 +36,6 @@ Simulator::Simulator(const World& world, const core::RobotConfig& robot, const c
       sim_(sim),
       seed_(seed),
       obstacles_(world, sim.floor_tolerance_m, robot.height_m),
-      renderer_(world, camera, sim, seed),
       odometry_queue_(static_cast<std::size_t>(sim.odometry_queue)) {
   teleport(world.start);
 }
@@ -121,13 +120,6 @@ void Simulator::step_to(std::int64_t end_ns) {
   }
 }
 
-void Simulator::render_frame(core::StereoFrame& frame, cv::Mat* depth_right) {
-  renderer_.render(pose_, pan_rad_, time_s(), static_cast<std::uint32_t>(frames_), frame.left, frame.right, depth_right);
-  frame.timestamp_ns = time_ns_;
-  frame.sequence = frames_++;
-  frame.pan_rad = pan_rad_;
-}
-
 bool Simulator::pop_odometry(OdometrySample& sample) {
   if (odometry_queue_.empty()) return false;
   sample = odometry_queue_.front();
@@ -135,16 +127,23 @@ bool Simulator::pop_odometry(OdometrySample& sample) {
   return true;
 }
 
-SimCamera::SimCamera(Simulator& simulator) : simulator_(simulator), next_frame_ns_(simulator.time_ns()) {}
+SimCamera::SimCamera(Simulator& simulator, StereoRenderer& renderer)
+    : simulator_(simulator), renderer_(renderer), next_frame_ns_(simulator.time_ns()) {}
 
-core::Status SimCamera::capture(core::StereoFrame& frame) {
+core::Status SimCamera::capture(core::StereoFrame& frame) { return capture_with_depth(frame, nullptr); }
+
+core::Status SimCamera::capture_with_depth(core::StereoFrame& frame, cv::Mat* depth_right) {
   if (simulator_.time_ns() < next_frame_ns_) return {core::StatusCode::not_available, "no new stereo pair yet"};
   const core::CameraConfig& camera = simulator_.camera_config();
   if (frame.left.rows != camera.height_px || frame.left.cols != camera.width_px || frame.left.type() != CV_8UC1 ||
       frame.right.rows != camera.height_px || frame.right.cols != camera.width_px || frame.right.type() != CV_8UC1) {
     return {core::StatusCode::invalid_input, "frame images not allocated at the camera size"};
   }
-  simulator_.render_frame(frame);
+  renderer_.render(simulator_.true_pose(), simulator_.pan_rad(), simulator_.time_s(), static_cast<std::uint32_t>(frames_),
+                   frame.left, frame.right, depth_right);
+  frame.timestamp_ns = simulator_.time_ns();
+  frame.sequence = frames_++;
+  frame.pan_rad = simulator_.pan_rad();
   const auto period_ns = static_cast<std::int64_t>(std::llround(1e9 / camera.frame_rate_hz));
   next_frame_ns_ = std::max(next_frame_ns_ + period_ns, simulator_.time_ns() - period_ns + 1);
   return core::Status::success();

@@ -1,8 +1,9 @@
 #pragma once
 // The simulated robot (SITL). Simulator owns the state — true pose, pan angle, simulated
 // time, drive command, odometry integrator — and advances only when step(dt) is called, so
-// nothing depends on wall-clock time. SimCamera, SimOdometry, SimDrive and SimClock are the
-// platform interfaces on top of it; the application uses them exactly like the robot's.
+// nothing depends on wall-clock time. SimCamera (with a StereoRenderer), SimOdometry,
+// SimDrive and SimClock are the platform interfaces on top of it; the application uses them
+// exactly like the robot's. Kinematics-only users (planner tests) need no renderer.
 //
 // Kinematics: differential drive (unicycle) at the commanded velocities, clamped to the
 // robot's limits (paper: 0.12 m/s, 8 deg/s), no acceleration limits. Collision: if the next
@@ -39,8 +40,8 @@ struct OdometrySample {
 
 class Simulator {
  public:
-  // `world` must outlive the simulator. Allocates the renderer and queues. `seed` is run.seed.
-  // The camera config must pass check_camera_supported().
+  // `world` must outlive the simulator. Allocates the odometry queue. `seed` is run.seed
+  // (odometry noise stream). The camera config gives the pan unit.
   Simulator(const World& world, const core::RobotConfig& robot, const core::CameraConfig& camera,
             const core::SimConfig& sim, std::uint64_t seed);
 
@@ -54,9 +55,6 @@ class Simulator {
   core::DriveCommand current_command() const { return command_; }
   void command_pan(double pan_rad);
 
-  // Renders the current view into `frame` (images allocated by the caller at the camera size)
-  // and, if given, the ground-truth depth of the right image. Counts frames.
-  void render_frame(core::StereoFrame& frame, cv::Mat* depth_right = nullptr);
   // Odometry readings produced so far and not yet taken (oldest first).
   bool pop_odometry(OdometrySample& sample);
 
@@ -67,11 +65,9 @@ class Simulator {
   double pan_rad() const { return pan_rad_; }
   std::uint64_t collision_count() const { return collisions_; }
   std::uint64_t odometry_dropped() const { return odometry_queue_.overwritten(); }
-  std::uint64_t frames_rendered() const { return frames_; }
   double distance_travelled_m() const { return distance_m_; }
   const World& world() const { return world_; }
   const core::CameraConfig& camera_config() const { return camera_; }
-  StereoRenderer& renderer() { return renderer_; }
 
   // Places the robot (start-up and tests); resets the odometry pose to the same pose.
   void teleport(const core::Pose2& pose);
@@ -87,7 +83,6 @@ class Simulator {
   core::SimConfig sim_;
   std::uint64_t seed_;
   ObstacleBand obstacles_;
-  StereoRenderer renderer_;
   core::RingBuffer<OdometrySample> odometry_queue_;
   std::int64_t time_ns_ = 0;
   core::Pose2 pose_;
@@ -99,20 +94,26 @@ class Simulator {
   double pan_rad_ = 0.0;
   double pan_target_rad_ = 0.0;
   std::uint64_t collisions_ = 0;
-  std::uint64_t frames_ = 0;
   double distance_m_ = 0.0;
 };
 
-// A camera that delivers a new pair every 1 / camera.frame_rate_hz of simulated time.
+// A camera that delivers a new pair every 1 / camera.frame_rate_hz of simulated time,
+// rendered from the simulator's true pose, pan angle and time (people move).
 class SimCamera final : public platform::Camera {
  public:
-  explicit SimCamera(Simulator& simulator);
+  // The renderer must have been made for the simulator's world and camera config.
+  SimCamera(Simulator& simulator, StereoRenderer& renderer);
   core::Status capture(core::StereoFrame& frame) override;
+  // The same, also writing the ground-truth depth of the right image (CV_32FC1, metres).
+  core::Status capture_with_depth(core::StereoFrame& frame, cv::Mat* depth_right);
   void command_pan(double pan_rad) override { simulator_.command_pan(pan_rad); }
+  std::uint64_t frames_rendered() const { return frames_; }
 
  private:
   Simulator& simulator_;
+  StereoRenderer& renderer_;
   std::int64_t next_frame_ns_ = 0;
+  std::uint64_t frames_ = 0;
 };
 
 class SimOdometry final : public platform::Odometry {

@@ -1,0 +1,253 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "stereoscout/core/allocation_counter.hpp"
+#include "stereoscout/host_sim/simulator.hpp"
+#include "test_worlds.hpp"
+
+namespace stereoscout::host_sim {
+namespace {
+
+using testing::load_or_fail;
+using testing::room_yaml;
+
+// A large empty hall, tile everywhere, or carpet everywhere.
+std::string hall_yaml(bool carpet) {
+  std::string yaml =
+      "start: [10, 10, 0]\nwalls:\n  - {points: [[0, 0], [20, 0], [20, 20], [0, 20], [0, 0]]}\n";
+  if (carpet) yaml += "floor_regions:\n  - {polygon: [[0, 0], [20, 0], [20, 20], [0, 20], [0, 0]], type: carpet}\n";
+  return yaml;
+}
+
+core::SimConfig noiseless() {
+  core::SimConfig sim;
+  sim.tile = core::OdometryNoiseConfig{};
+  sim.carpet = core::OdometryNoiseConfig{};
+  return sim;
+}
+
+// Drives at `speed` for `seconds` (or turns at `turn_rate`), then stops.
+void drive(Simulator& simulator, double speed, double turn_rate, double seconds) {
+  simulator.command({speed, turn_rate});
+  simulator.step(seconds);
+  simulator.command({});
+}
+
+// A square with sides of `side` m at full speed, turning left 90 degrees at each corner.
+void drive_square(Simulator& simulator, double side, int sides) {
+  const core::RobotConfig robot;
+  const double turn_rate = core::degrees_to_radians(robot.max_turn_rate_deg_s);
+  for (int i = 0; i < sides; ++i) {
+    drive(simulator, robot.max_speed_mps, 0.0, side / robot.max_speed_mps);
+    drive(simulator, 0.0, turn_rate, (core::kPi / 2.0) / turn_rate);
+  }
+}
+
+// The newest odometry reading with its true pose (drains the queue).
+OdometrySample last_sample(Simulator& simulator) {
+  OdometrySample sample;
+  OdometrySample newest;
+  while (simulator.pop_odometry(sample)) newest = sample;
+  return newest;
+}
+
+TEST(Simulator, CommandsAreClampedToTheRobotsLimits) {
+  const World world = load_or_fail(hall_yaml(false));
+  Simulator simulator(world, core::RobotConfig{}, core::CameraConfig{}, noiseless(), 1);
+  simulator.command({1.0, 1.0});
+  EXPECT_DOUBLE_EQ(simulator.current_command().linear_mps, 0.12);
+  EXPECT_NEAR(simulator.current_command().angular_rad_s, core::degrees_to_radians(8.0), 1e-12);
+  simulator.step(10.0);
+  EXPECT_NEAR(simulator.distance_travelled_m(), 1.2, 1e-9);
+  EXPECT_NEAR(simulator.true_pose().theta, core::degrees_to_radians(80.0), 1e-9);
+}
+
+TEST(Simulator, OdometryArrivesAtItsRateAndIsExactWithoutNoise) {
+  const World world = load_or_fail(hall_yaml(false));
+  Simulator simulator(world, core::RobotConfig{}, core::CameraConfig{}, noiseless(), 1);
+  SimOdometry odometry(simulator);
+  drive_square(simulator, 2.0, 4);
+  int readings = 0;
+  core::OdometryReading reading;
+  std::int64_t last_timestamp = 0;
+  while (odometry.read(reading).ok()) {
+    ++readings;
+    EXPECT_GT(reading.timestamp_ns, last_timestamp);
+    last_timestamp = reading.timestamp_ns;
+  }
+  EXPECT_FALSE(odometry.read(reading).ok());
+  // 5.4 Hz over the whole run (the queue holds 64 readings; older ones are dropped, counted).
+  const double expected = simulator.time_s() * 5.4;
+  EXPECT_NEAR(static_cast<double>(readings) + static_cast<double>(simulator.odometry_dropped()), expected, 1.0);
+  EXPECT_NEAR(reading.pose.x, odometry.last_true_pose().x, 1e-9);
+  EXPECT_NEAR(reading.pose.y, odometry.last_true_pose().y, 1e-9);
+  EXPECT_NEAR(reading.pose.theta, odometry.last_true_pose().theta, 1e-9);
+}
+
+TEST(Simulator, SystematicOdometryErrorsAreThoseOfTheModel) {
+  core::SimConfig sim = noiseless();
+  sim.tile.scale_error = 0.05;
+  sim.tile.drift_deg_per_m = 1.0;
+  const World world = load_or_fail(hall_yaml(false));
+  Simulator simulator(world, core::RobotConfig{}, core::CameraConfig{}, sim, 1);
+  drive(simulator, 0.12, 0.0, 2.0 / 0.12);  // 2 m, then wait for the last reading
+  simulator.step(1.0);
+  const OdometrySample sample = last_sample(simulator);
+  const core::Pose2 start = world.start;
+  const double true_distance = (sample.true_pose.translation() - start.translation()).norm();
+  const double odometry_distance = (sample.reading.pose.translation() - start.translation()).norm();
+  EXPECT_NEAR(true_distance, 2.0, 1e-9);
+  // Each reading's heading drift bends the path slightly; the length is the model's.
+  EXPECT_NEAR(odometry_distance, 2.0 * 1.05, 0.005);
+  EXPECT_NEAR(sample.reading.pose.theta - sample.true_pose.theta, core::degrees_to_radians(2.0), 1e-9);
+}
+
+// Heading error after driving a square many times with different seeds: the random part of
+// the model predicts its spread (variance sigma_rad^2 * turned + sigma_m^2 * driven).
+std::vector<double> heading_errors(bool carpet, int runs, int sides, double* position_rms) {
+  const World world = load_or_fail(hall_yaml(carpet));
+  core::SimConfig sim;
+  sim.tile.scale_error = 0.0;
+  sim.tile.drift_deg_per_m = 0.0;
+  sim.carpet.scale_error = 0.0;
+  sim.carpet.drift_deg_per_m = 0.0;
+  std::vector<double> errors;
+  double squared = 0.0;
+  for (int run = 0; run < runs; ++run) {
+    Simulator simulator(world, core::RobotConfig{}, core::CameraConfig{}, sim, static_cast<std::uint64_t>(100 + run));
+    drive_square(simulator, 2.0, sides);
+    simulator.step(0.5);
+    const OdometrySample sample = last_sample(simulator);
+    errors.push_back(core::wrap_angle(sample.reading.pose.theta - sample.true_pose.theta));
+    squared += (sample.reading.pose.translation() - sample.true_pose.translation()).squaredNorm();
+  }
+  *position_rms = std::sqrt(squared / runs);
+  return errors;
+}
+
+double rms(const std::vector<double>& values) {
+  double sum = 0.0;
+  for (double v : values) sum += v * v;
+  return std::sqrt(sum / static_cast<double>(values.size()));
+}
+
+TEST(Simulator, RandomOdometryErrorGrowsAsTheNoiseModelSays) {
+  const core::SimConfig sim;
+  constexpr int kRuns = 40;
+  double position_one_side = 0.0;
+  double position_square = 0.0;
+  double position_carpet = 0.0;
+  const auto one_side = heading_errors(false, kRuns, 1, &position_one_side);
+  const auto square = heading_errors(false, kRuns, 4, &position_square);
+  const auto carpet = heading_errors(true, kRuns, 4, &position_carpet);
+  auto predicted = [](const core::OdometryNoiseConfig& noise, double turned_rad, double driven_m) {
+    return std::sqrt(noise.rotation_sigma_rad_per_sqrt_rad * noise.rotation_sigma_rad_per_sqrt_rad * turned_rad +
+                     noise.rotation_sigma_rad_per_sqrt_m * noise.rotation_sigma_rad_per_sqrt_m * driven_m);
+  };
+  // One side and its corner: 2 m, pi/2 turned. The square: 8 m, 2 pi turned.
+  EXPECT_NEAR(rms(one_side) / predicted(sim.tile, core::kPi / 2.0, 2.0), 1.0, 0.3);
+  EXPECT_NEAR(rms(square) / predicted(sim.tile, 2.0 * core::kPi, 8.0), 1.0, 0.3);
+  EXPECT_NEAR(rms(carpet) / predicted(sim.carpet, 2.0 * core::kPi, 8.0), 1.0, 0.3);
+  EXPECT_GT(position_square, position_one_side);
+  EXPECT_GT(position_carpet, position_square);
+}
+
+TEST(Simulator, OdometryIsIdenticalForTheSameSeed) {
+  const World world = load_or_fail(hall_yaml(false));
+  auto run = [&](std::uint64_t seed) {
+    Simulator simulator(world, core::RobotConfig{}, core::CameraConfig{}, core::SimConfig{}, seed);
+    drive_square(simulator, 1.0, 2);
+    return last_sample(simulator).reading.pose;
+  };
+  const core::Pose2 first = run(5);
+  const core::Pose2 second = run(5);
+  EXPECT_EQ(first.x, second.x);
+  EXPECT_EQ(first.y, second.y);
+  EXPECT_EQ(first.theta, second.theta);
+  EXPECT_NE(first.x, run(6).x);
+}
+
+TEST(Simulator, DriveIntoAWallIsStoppedAndCounted) {
+  // Start 2 m from the wall at x = 10, facing it; the robot's radius is 0.35 m.
+  const World world = load_or_fail(room_yaml("brick"));
+  Simulator simulator(world, core::RobotConfig{}, core::CameraConfig{}, noiseless(), 1);
+  simulator.teleport(core::Pose2{8.0, 3.0, 0.0});
+  SimDrive drive_interface(simulator);
+  ASSERT_TRUE(drive_interface.command({0.12, 0.0}).ok());
+  simulator.step(30.0);
+  EXPECT_EQ(simulator.collision_count(), 1U);
+  EXPECT_GT(simulator.true_pose().x, 10.0 - 0.35 - 0.002);
+  EXPECT_LE(simulator.true_pose().x, 10.0 - 0.35);
+  EXPECT_EQ(simulator.current_command().linear_mps, 0.0);
+  // Pushing again is stopped again; backing away works.
+  ASSERT_TRUE(drive_interface.command({0.12, 0.0}).ok());
+  simulator.step(1.0);
+  EXPECT_EQ(simulator.collision_count(), 2U);
+  ASSERT_TRUE(drive_interface.command({-0.12, 0.0}).ok());
+  simulator.step(1.0);
+  EXPECT_NEAR(simulator.true_pose().x, 10.0 - 0.35 - 0.12, 0.003);
+  EXPECT_EQ(simulator.collision_count(), 2U);
+}
+
+TEST(Simulator, LowAndHighObstaclesFollowTheHeightBand) {
+  // A 1 cm cable protector is driven over; a shelf at 1.5 m is passed under (robot 1.2 m);
+  // a 10 cm box blocks.
+  const World world = load_or_fail(room_yaml("brick") +
+                                    "boxes:\n  - {center: [4, 3], size: [0.2, 4], z: [0, 0.01]}\n"
+                                    "  - {center: [5, 3], size: [0.4, 4], z: [1.5, 1.8]}\n"
+                                    "  - {center: [7, 3], size: [0.4, 4], z: [0, 0.1]}\n");
+  Simulator simulator(world, core::RobotConfig{}, core::CameraConfig{}, noiseless(), 1);
+  simulator.command({0.12, 0.0});
+  simulator.step(60.0);
+  EXPECT_EQ(simulator.collision_count(), 1U);
+  EXPECT_NEAR(simulator.true_pose().x, 7.0 - 0.2 - 0.35, 0.002);
+}
+
+TEST(Simulator, PanUnitTurnsAtItsRate) {
+  const World world = load_or_fail(hall_yaml(false));
+  Simulator simulator(world, core::RobotConfig{}, core::CameraConfig{}, noiseless(), 1);
+  simulator.command_pan(core::degrees_to_radians(90.0));
+  simulator.step(1.0);
+  EXPECT_NEAR(simulator.pan_rad(), core::degrees_to_radians(30.0), 1e-9);
+  simulator.step(5.0);
+  EXPECT_NEAR(simulator.pan_rad(), core::degrees_to_radians(90.0), 1e-9);
+}
+
+TEST(Simulator, CameraDeliversFramesAtItsRateOnSimulatedTime) {
+  const World world = load_or_fail(room_yaml("poster"));
+  const core::CameraConfig camera;
+  Simulator simulator(world, core::RobotConfig{}, camera, core::SimConfig{}, 1);
+  StereoRenderer renderer(world, camera, core::SimConfig{}, 1);
+  SimCamera sim_camera(simulator, renderer);
+  SimClock clock(simulator);
+  core::StereoFrame frame;
+  frame.allocate(camera.width_px, camera.height_px);
+  EXPECT_TRUE(sim_camera.capture(frame).ok());
+  EXPECT_EQ(sim_camera.capture(frame).code, core::StatusCode::not_available);
+  clock.sleep_until(clock.now_ns() + 1'000'000'000 / 15 + 1);
+  const core::AllocationScope scope;
+  EXPECT_TRUE(sim_camera.capture(frame).ok());
+  EXPECT_EQ(scope.allocations(), 0U);
+  EXPECT_EQ(frame.sequence, 1U);
+  EXPECT_EQ(frame.timestamp_ns, clock.now_ns());
+}
+
+TEST(Simulator, StepAndOdometryDoNotAllocate) {
+  const World world = load_or_fail(hall_yaml(true));
+  Simulator simulator(world, core::RobotConfig{}, core::CameraConfig{}, core::SimConfig{}, 1);
+  SimOdometry odometry(simulator);
+  core::OdometryReading reading;
+  const core::AllocationScope scope;
+  simulator.command({0.1, 0.05});
+  for (int i = 0; i < 100; ++i) {
+    simulator.step(0.05);
+    while (odometry.read(reading).ok()) {
+    }
+  }
+  EXPECT_EQ(scope.allocations(), 0U);
+}
+
+}  // namespace
+}  // namespace stereoscout::host_sim
