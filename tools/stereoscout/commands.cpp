@@ -13,6 +13,7 @@ constexpr Command kCommands[] = {
     {"landmark-slam", "run the landmark filter on one robot of a UTIAS MRCLAM dataset and score its map", run_landmark_slam},
     {"sim-render", "render the simulated stereo pair and ground-truth depth seen from a pose", run_sim_render},
     {"world-map", "write the ground-truth occupancy map and reachable free space of a world", run_world_map},
+    {"eval-disparity", "dense disparity of a rectified pair scored against ground truth (JSON)", run_eval_disparity},
     {nullptr, nullptr, nullptr},
 };
 
