@@ -14,14 +14,17 @@ RobotFrameObservation to_robot_frame(const core::LandmarkObservation& observatio
   return moved;
 }
 
-MapFrameObservation to_map_frame(const RobotFrameObservation& observation, const core::Pose2& pose) {
+PlanarTransform::PlanarTransform(const core::Pose2& pose) : translation(pose.x, pose.y, 0.0) {
   const double c = std::cos(pose.theta);
   const double s = std::sin(pose.theta);
-  Eigen::Matrix3d rotation;
   rotation << c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0;
+}
+
+MapFrameObservation to_map_frame(const RobotFrameObservation& observation, const PlanarTransform& map_from_robot) {
   MapFrameObservation moved;
-  moved.point = rotation * observation.point + Eigen::Vector3d(pose.x, pose.y, 0.0);
-  moved.covariance = core::symmetrize(rotation * observation.covariance * rotation.transpose());
+  moved.point = map_from_robot.rotation * observation.point + map_from_robot.translation;
+  moved.covariance = core::symmetrize(map_from_robot.rotation * observation.covariance *
+                                      map_from_robot.rotation.transpose());
   return moved;
 }
 

@@ -11,6 +11,21 @@ namespace {
 
 std::size_t to_size(int value) { return static_cast<std::size_t>(value); }
 
+// Stable insertion sort (no heap, keeps the given order within one id). Visiting landmarks in
+// id order walks neighbouring paths of the tree one after the other, so the nodes they share
+// are copied once and then found in cache.
+void sort_by_landmark_id(core::FixedVector<RobotFrameObservation>& observations) {
+  for (std::size_t i = 1; i < observations.size(); ++i) {
+    const RobotFrameObservation moving = observations[i];
+    std::size_t j = i;
+    while (j > 0 && observations[j - 1].landmark_id > moving.landmark_id) {
+      observations[j] = observations[j - 1];
+      --j;
+    }
+    observations[j] = moving;
+  }
+}
+
 }  // namespace
 
 ParticleFilter::ParticleFilter(const core::FilterConfig& config, const core::CameraMount& camera_mount,
@@ -62,6 +77,29 @@ void ParticleFilter::start(const core::OdometryReading& odometry, const core::Po
   ml_slot_ = 0;
 }
 
+void ParticleFilter::start(const core::OdometryReading& odometry, const core::Pose2& initial_pose,
+                           const PriorLandmark* prior, std::size_t prior_count) {
+  start(odometry, initial_pose);
+  Particle& first = (*particles_)[0];
+  for (std::size_t k = 0; k < prior_count; ++k) {
+    const bool fits = [&] {
+      MapNode* leaf = landmarks_.mutable_leaf(first.map, prior[k].landmark_id, 1);
+      if (leaf == nullptr || leaf->estimates.size() >= to_size(config_.estimates_per_landmark)) {
+        return false;
+      }
+      landmarks_.add_estimate(*leaf, prior[k].estimate);
+      return true;
+    }();
+    if (!fits) {
+      ++counters_.changes_refused_pool_full;
+    }
+  }
+  for (std::size_t slot = 1; slot < particles_->size(); ++slot) {
+    (*particles_)[slot].map = first.map;
+    landmarks_.retain(first.map);
+  }
+}
+
 UpdateResult ParticleFilter::update(const core::OdometryReading& odometry, ObservationList observations,
                                     double pan_rad) {
   return update(odometry, observations, core::robot_from_camera(camera_mount_, pan_rad));
@@ -81,9 +119,10 @@ UpdateResult ParticleFilter::update(const core::OdometryReading& odometry, Obser
   last_odometry_ = odometry.pose;
   const std::size_t used = prepare_observations(observations, robot_from_sensor);
   for (Particle& p : *particles_) {
+    const PlanarTransform map_from_robot(p.pose);
     double log_likelihood = 0.0;
     for (std::size_t k = 0; k < used; ++k) {
-      log_likelihood += observe(p, observations_[k]);
+      log_likelihood += observe(p, map_from_robot, observations_[k]);
     }
     p.log_weight += log_likelihood;
   }
@@ -125,13 +164,15 @@ std::size_t ParticleFilter::prepare_observations(ObservationList observations,
     observations_.push_back(to_robot_frame(observation, robot_from_sensor));
     ++counters_.observations_used;
   }
+  sort_by_landmark_id(observations_);
   return observations_.size();
 }
 
 // Paper Algorithm 1 for one particle and one observation; returns its log-likelihood (eq. 7,
 // the constant k dropped: it is the same for every particle).
-double ParticleFilter::observe(Particle& particle, const RobotFrameObservation& observation) {
-  const MapFrameObservation seen = to_map_frame(observation, particle.pose);
+double ParticleFilter::observe(Particle& particle, const PlanarTransform& map_from_robot,
+                               const RobotFrameObservation& observation) {
+  const MapFrameObservation seen = to_map_frame(observation, map_from_robot);
   const MapNode* leaf = landmarks_.find_leaf(particle.map, observation.landmark_id);
   if (leaf == nullptr || leaf->estimates.empty()) {
     // A first sighting: every particle is in the same position, the weight is unchanged.

@@ -291,3 +291,37 @@ TEST(ObservationModel, RangeBearingCovarianceFollowsTheJacobian) {
 
 }  // namespace
 }  // namespace stereoscout::slam
+
+namespace stereoscout::slam {
+namespace {
+
+TEST(ParticleFilter, APriorMapIsBuiltOnceAndSharedByEveryParticle) {
+  ParticleFilter filter(small_config(50), core::CameraMount{}, 2);
+  std::vector<PriorLandmark> prior(64);
+  for (std::uint32_t id = 0; id < 64; ++id) {
+    prior[id].landmark_id = id;
+    prior[id].estimate.mean = landmark_position(id);
+    prior[id].estimate.covariance = Eigen::Matrix3d::Identity() * 0.01;
+    prior[id].estimate.observations = 5;
+  }
+  filter.start(odometry_at(0, {}), {}, prior.data(), prior.size());
+  EXPECT_EQ(filter.landmarks().nodes_in_use(), 127u);  // one tree of 64 leaves for all 50
+  EXPECT_EQ(filter.landmarks().estimates_in_use(), 64u);
+  EXPECT_EQ(filter.particle(49).map.root, filter.particle(0).map.root);
+  EXPECT_EQ(filter.landmarks().use_count(filter.particle(0).map.root), 50u);
+  // One observation per particle copies one 7-node path and one estimate, except for the last
+  // particle: by then it is the only holder of the original path and updates it in place.
+  std::vector<core::LandmarkObservation> one(1);
+  one[0].landmark_id = 9;
+  one[0].point_camera = landmark_position(9);
+  one[0].covariance = Eigen::Matrix3d::Identity() * 0.01;
+  filter.update(odometry_at(1, {}), as_list(one), Eigen::Isometry3d::Identity());
+  EXPECT_EQ(filter.landmarks().nodes_in_use(), 127u + 49u * 7u);
+  EXPECT_EQ(filter.landmarks().estimates_in_use(), 64u + 49u);
+  filter.start(odometry_at(0, {}));
+  EXPECT_EQ(filter.landmarks().nodes_in_use(), 0u);
+  EXPECT_EQ(filter.landmarks().estimates_in_use(), 0u);
+}
+
+}  // namespace
+}  // namespace stereoscout::slam

@@ -31,7 +31,14 @@ struct MapFrameObservation {
 
 RobotFrameObservation to_robot_frame(const core::LandmarkObservation& observation,
                                      const Eigen::Isometry3d& robot_from_sensor);
-MapFrameObservation to_map_frame(const RobotFrameObservation& observation, const core::Pose2& pose);
+// A particle's pose as a 3D transform (rotation about z), made once per particle and update.
+struct PlanarTransform {
+  explicit PlanarTransform(const core::Pose2& pose);
+  Eigen::Matrix3d rotation;
+  Eigen::Vector3d translation;
+};
+
+MapFrameObservation to_map_frame(const RobotFrameObservation& observation, const PlanarTransform& map_from_robot);
 
 // A range/bearing measurement on the floor plane turned into a point observation in the
 // sensor frame (x forward, y left, z up): p = (r cos b, r sin b, 0), covariance J S J^T with

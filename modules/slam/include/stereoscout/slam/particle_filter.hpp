@@ -37,6 +37,12 @@ struct Particle {
   TrajectoryNodeHandle trajectory;
 };
 
+// One landmark of a map the filter starts from (start with a prior).
+struct PriorLandmark {
+  std::uint32_t landmark_id = 0;
+  LandmarkEstimate estimate;
+};
+
 // A view of the observations of one update (no ownership, no copy).
 struct ObservationList {
   const core::LandmarkObservation* data = nullptr;
@@ -74,6 +80,10 @@ class ParticleFilter {
   // Places every particle at `initial_pose` with an empty map; `odometry` is the reading the
   // first update's motion is measured from. Releases whatever an earlier run held.
   void start(const core::OdometryReading& odometry, const core::Pose2& initial_pose = {});
+  // The same, every particle starting from one shared copy of a known map (a resumed mission,
+  // a benchmark's steady state): the map is built once and all particles hold it.
+  void start(const core::OdometryReading& odometry, const core::Pose2& initial_pose, const PriorLandmark* prior,
+             std::size_t prior_count);
 
   // One update with stereo observations in the camera's optical frame, the camera on the
   // configured mount turned by `pan_rad`.
@@ -107,7 +117,7 @@ class ParticleFilter {
   void release_particles(core::FixedVector<Particle>& particles);
   void predict(const core::Pose2& motion);
   std::size_t prepare_observations(ObservationList observations, const Eigen::Isometry3d& robot_from_sensor);
-  double observe(Particle& particle, const RobotFrameObservation& observation);
+  double observe(Particle& particle, const PlanarTransform& map_from_robot, const RobotFrameObservation& observation);
   void extend_trajectories(std::int64_t timestamp_ns);
   void normalise_weights();
   std::size_t best_slot() const;
