@@ -33,7 +33,7 @@ struct DescriptorIndexParams {
   std::size_t capacity = 100000;
   int bucket_size = 16;
   int max_leaf_checks = 64;
-  double match_distance = 250.0;
+  double match_distance = 180.0;
   int candidate_min_frames = 3;
 };
 

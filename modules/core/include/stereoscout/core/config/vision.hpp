@@ -27,7 +27,7 @@ struct VisionConfig {
   double sift_sigma = 1.6;
   bool sift_parallel = false;
   // Descriptor index.
-  double index_match_distance = 250.0;
+  double index_match_distance = 180.0;
   int index_bucket_size = 16;
   // Dense disparity block matcher.
   int dense_num_disparities = 64;
