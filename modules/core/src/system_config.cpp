@@ -25,6 +25,7 @@ void describe(ConfigVisitor& visitor, SystemConfig& config) {
   describe(visitor, config.explore);
   describe(visitor, config.budgets);
   describe(visitor, config.sim);
+  describe(visitor, config.robot_pc);
 }
 
 std::string SystemConfigLoad::error_text() const {

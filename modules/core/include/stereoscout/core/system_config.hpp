@@ -12,6 +12,7 @@
 #include "stereoscout/core/config/filter.hpp"
 #include "stereoscout/core/config/grid.hpp"
 #include "stereoscout/core/config/robot.hpp"
+#include "stereoscout/core/config/robot_pc.hpp"
 #include "stereoscout/core/config/run.hpp"
 #include "stereoscout/core/config/sim.hpp"
 #include "stereoscout/core/config/vision.hpp"
@@ -28,6 +29,7 @@ struct SystemConfig {
   ExploreConfig explore;
   BudgetsConfig budgets;
   SimConfig sim;
+  RobotPcConfig robot_pc;
 };
 
 void describe(ConfigVisitor& visitor, SystemConfig& config);
