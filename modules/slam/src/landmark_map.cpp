@@ -57,24 +57,22 @@ const MapNode* LandmarkStore::find_leaf(const LandmarkMap& map, std::uint32_t id
   return &nodes_.get(at);
 }
 
-// Returns a node that only the caller's parent holds: `handle` itself when nobody else
-// holds it, else a fresh copy that takes over the caller's reference (path copying).
-MapNodeHandle LandmarkStore::exclusive_copy(MapNodeHandle handle) {
-  if (!nodes_.is_shared(handle)) {
-    return handle;
-  }
-  const MapNodeHandle copy = nodes_.acquire(nodes_.get(handle));
+// A copy of `source` that holds its own references to everything except the child on the
+// path (`path_bit`), which the caller replaces by that child's copy straight away.
+MapNodeHandle LandmarkStore::copy_for_path(MapNodeHandle source, unsigned level, unsigned path_bit) {
+  const MapNodeHandle copy = nodes_.acquire(nodes_.get(source));
   STEREOSCOUT_CHECK(copy, "landmark node pool ran out after its room was checked");
   const MapNode& copied = nodes_.get(copy);
-  for (const MapNodeHandle child : copied.child) {
-    if (child) {
-      nodes_.retain(child);
+  if (level > 0) {
+    const MapNodeHandle off_path = copied.child[1U - path_bit];
+    if (off_path) {
+      nodes_.retain(off_path);
+    }
+  } else {
+    for (const EstimateHandle e : copied.estimates) {
+      estimates_.retain(e);
     }
   }
-  for (const EstimateHandle e : copied.estimates) {
-    estimates_.retain(e);
-  }
-  release_node(handle);  // shared, so this only drops our reference
   ++counters_.path_nodes_copied;
   return copy;
 }
@@ -99,18 +97,31 @@ MapNode* LandmarkStore::mutable_leaf(LandmarkMap& map, std::uint32_t id, std::si
     map.root = nodes_.acquire(grown);
     ++map.depth;
   }
-  if (!map.root) {
-    map.root = nodes_.acquire();
-  } else {
-    map.root = exclusive_copy(map.root);
+  // Path copying. Everything below a shared node is reachable from several maps, so from the
+  // first shared node down every node on the path is copied without asking; only that first
+  // one gives back the reference its (exclusive) parent held.
+  MapNodeHandle* link = &map.root;
+  bool below_shared = false;
+  for (unsigned level = map.depth;; --level) {
+    const unsigned path_bit = level > 0 ? (id >> (level - 1)) & 1U : 0U;
+    MapNodeHandle current = *link;
+    if (!current) {
+      current = nodes_.acquire();
+      below_shared = false;
+    } else if (below_shared) {
+      current = copy_for_path(current, level, path_bit);
+    } else if (nodes_.is_shared(current)) {
+      const MapNodeHandle copy = copy_for_path(current, level, path_bit);
+      release_node(current);  // shared, so this only drops the reference we held
+      current = copy;
+      below_shared = true;
+    }
+    *link = current;
+    if (level == 0) {
+      return &nodes_.get(current);
+    }
+    link = &nodes_.get(current).child[path_bit];
   }
-  MapNodeHandle at = map.root;
-  for (unsigned level = map.depth; level > 0; --level) {
-    MapNodeHandle& child = nodes_.get(at).child[(id >> (level - 1)) & 1U];
-    child = child ? exclusive_copy(child) : nodes_.acquire();
-    at = child;
-  }
-  return &nodes_.get(at);
 }
 
 LandmarkEstimate& LandmarkStore::mutable_estimate(MapNode& leaf, std::size_t index) {

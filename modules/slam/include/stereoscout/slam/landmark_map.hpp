@@ -123,7 +123,7 @@ class LandmarkStore {
   }
 
   void release_node(MapNodeHandle handle);
-  MapNodeHandle exclusive_copy(MapNodeHandle handle);
+  MapNodeHandle copy_for_path(MapNodeHandle source, unsigned level, unsigned path_bit);
 
   core::SharedPool<MapNode> nodes_;
   core::SharedPool<LandmarkEstimate> estimates_;
