@@ -128,7 +128,7 @@ bool Simulator::pop_odometry(OdometrySample& sample) {
 }
 
 SimCamera::SimCamera(Simulator& simulator, StereoRenderer& renderer)
-    : simulator_(simulator), renderer_(renderer), next_frame_ns_(simulator.time_ns()) {}
+    : simulator_(simulator), renderer_(renderer), start_ns_(simulator.time_ns()), next_frame_ns_(simulator.time_ns()) {}
 
 core::Status SimCamera::capture(core::StereoFrame& frame) { return capture_with_depth(frame, nullptr); }
 
@@ -144,8 +144,10 @@ core::Status SimCamera::capture_with_depth(core::StereoFrame& frame, cv::Mat* de
   frame.timestamp_ns = simulator_.time_ns();
   frame.sequence = frames_++;
   frame.pan_rad = simulator_.pan_rad();
-  const auto period_ns = static_cast<std::int64_t>(std::llround(1e9 / camera.frame_rate_hz));
-  next_frame_ns_ = std::max(next_frame_ns_ + period_ns, simulator_.time_ns() - period_ns + 1);
+  // Pairs come at a fixed cadence from the camera's start; a late capture gets the newest
+  // pair and the next one comes at the next tick of the cadence (no bursts).
+  const auto period_ns = std::max<std::int64_t>(1, std::llround(1e9 / camera.frame_rate_hz));
+  next_frame_ns_ = start_ns_ + ((simulator_.time_ns() - start_ns_) / period_ns + 1) * period_ns;
   return core::Status::success();
 }
 

@@ -232,6 +232,11 @@ TEST(Simulator, CameraDeliversFramesAtItsRateOnSimulatedTime) {
   EXPECT_EQ(scope.allocations(), 0U);
   EXPECT_EQ(frame.sequence, 1U);
   EXPECT_EQ(frame.timestamp_ns, clock.now_ns());
+  // A capture 3.5 periods late gets one pair, not a burst of the missed ones.
+  clock.sleep_until(clock.now_ns() + std::int64_t{3'000'000'000} / 15 + 1'000'000'000 / 30);
+  EXPECT_TRUE(sim_camera.capture(frame).ok());
+  EXPECT_EQ(sim_camera.capture(frame).code, core::StatusCode::not_available);
+  EXPECT_EQ(sim_camera.frames_rendered(), 3U);
 }
 
 TEST(Simulator, StepAndOdometryDoNotAllocate) {

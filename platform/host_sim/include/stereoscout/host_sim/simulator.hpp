@@ -112,6 +112,7 @@ class SimCamera final : public platform::Camera {
  private:
   Simulator& simulator_;
   StereoRenderer& renderer_;
+  std::int64_t start_ns_ = 0;
   std::int64_t next_frame_ns_ = 0;
   std::uint64_t frames_ = 0;
 };
