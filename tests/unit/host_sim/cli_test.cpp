@@ -1,0 +1,75 @@
+#include <gtest/gtest.h>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+
+namespace {
+
+std::string world_path(const char* name) {
+  const char* root = std::getenv("STEREOSCOUT_SOURCE_DIR");
+  return std::string(root != nullptr ? root : STEREOSCOUT_TEST_SOURCE_DIR) + "/config/worlds/" + name;
+}
+
+int run(const std::string& arguments, std::string* output = nullptr) {
+  const std::string command = std::string(STEREOSCOUT_BINARY) + " " + arguments + " 2>&1";
+  std::FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return -1;
+  char buffer[512];
+  std::string text;
+  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) text += buffer;
+  if (output != nullptr) *output = text;
+  const int status = pclose(pipe);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST(SimCommands, SimRenderWritesThePairAndDepthInMillimetres) {
+  const std::string out = ::testing::TempDir() + "sim_render_test";
+  std::string output;
+  ASSERT_EQ(run("sim-render --world " + world_path("lab.yaml") + " --pose 2.5,2.5,30 --pan 0 --out " + out, &output), 0)
+      << output;
+  const cv::Mat left = cv::imread(out + "/left.png", cv::IMREAD_UNCHANGED);
+  const cv::Mat right = cv::imread(out + "/right.png", cv::IMREAD_UNCHANGED);
+  const cv::Mat depth = cv::imread(out + "/depth.png", cv::IMREAD_UNCHANGED);
+  ASSERT_FALSE(left.empty());
+  ASSERT_FALSE(right.empty());
+  ASSERT_FALSE(depth.empty());
+  EXPECT_EQ(left.type(), CV_8UC1);
+  EXPECT_EQ(right.size(), cv::Size(640, 480));
+  EXPECT_EQ(depth.type(), CV_16UC1);
+  // The bottom row sees the floor at Z = f h / (479 - cy) = 400 * 0.6 / 239.5 m.
+  EXPECT_NEAR(depth.at<std::uint16_t>(479, 320), 1002, 1);
+}
+
+TEST(SimCommands, WorldMapWritesMapServerFiles) {
+  const std::string out = ::testing::TempDir() + "world_map_test";
+  std::string output;
+  ASSERT_EQ(run("world-map --world " + world_path("lab.yaml") + " --resolution 0.1 --out " + out, &output), 0) << output;
+  const cv::Mat map = cv::imread(out + "/map.pgm", cv::IMREAD_UNCHANGED);
+  const cv::Mat reachable = cv::imread(out + "/reachable.pgm", cv::IMREAD_UNCHANGED);
+  ASSERT_FALSE(map.empty());
+  ASSERT_EQ(reachable.size(), map.size());
+  // 19 m + 2 x 0.5 m margin at 0.1 m.
+  EXPECT_EQ(map.cols, 200);
+  std::ifstream yaml(out + "/map.yaml");
+  std::string first_line;
+  std::getline(yaml, first_line);
+  EXPECT_EQ(first_line, "image: map.pgm");
+  EXPECT_NE(output.find("reachable"), std::string::npos);
+}
+
+TEST(SimCommands, BadWorldAndPoseAreReported) {
+  const std::string bad = ::testing::TempDir() + "bad_world.yaml";
+  std::ofstream(bad) << "start: [0, 0, 0]\nwalls:\n  - {points: [[0, 0], [1, 0]], colour: red}\n";
+  std::string output;
+  EXPECT_EQ(run("world-map --world " + bad + " --out " + ::testing::TempDir(), &output), 1);
+  EXPECT_NE(output.find("bad_world.yaml: walls[0].colour: unknown key"), std::string::npos) << output;
+  EXPECT_EQ(run("sim-render --world " + world_path("lab.yaml") + " --pose 1,2 --out " + ::testing::TempDir(), &output), 2);
+  EXPECT_NE(output.find("--pose"), std::string::npos) << output;
+}
+
+}  // namespace
