@@ -1,0 +1,36 @@
+#pragma once
+// The grid of one particle's whole trajectory, built from scratch (paper V: the final map is
+// rebuilt at the end of a run, at grid.final_map_resolution_m, from the ML trajectory's
+// scans). Also the reference the just-in-time grid is tested against. Allocates: for the end
+// of a run and for tests, not for the tick loop.
+
+#include <cstdint>
+#include <memory>
+
+#include "stereoscout/occupancy/occupancy_grid.hpp"
+#include "stereoscout/occupancy/scan_history.hpp"
+#include "stereoscout/slam/trajectory_tree.hpp"
+
+namespace stereoscout::occupancy {
+
+struct TrajectoryScanCounts {
+  std::uint64_t nodes = 0;              // root to node
+  std::uint64_t scans_inserted = 0;
+  std::uint64_t scans_overwritten = 0;  // had left the ring: the map lacks them
+};
+
+// Inserts, oldest first, the stored scans of every node from the root down to `node`.
+TrajectoryScanCounts insert_trajectory_scans(const slam::TrajectoryTree& tree, slam::TrajectoryNodeHandle node,
+                                             const ScanHistory& scans, OccupancyGrid& grid);
+
+// The smallest grid at `resolution_m` that holds every pose of the trajectory and every
+// stored scan point seen from it, plus `margin_m` on each side.
+GridGeometry fit_trajectory_geometry(const slam::TrajectoryTree& tree, slam::TrajectoryNodeHandle node,
+                                     const ScanHistory& scans, double resolution_m, double margin_m);
+
+// fit_trajectory_geometry + insert_trajectory_scans.
+std::unique_ptr<OccupancyGrid> build_final_map(const slam::TrajectoryTree& tree, slam::TrajectoryNodeHandle node,
+                                               const ScanHistory& scans, double resolution_m,
+                                               const LogOddsModel& model, TrajectoryScanCounts* counts = nullptr);
+
+}  // namespace stereoscout::occupancy
