@@ -12,6 +12,7 @@
 #include <cmath>
 #include <limits>
 
+#include "stereoscout/core/check.hpp"
 #include "stereoscout/core/random.hpp"
 
 namespace stereoscout::host_sim {
@@ -56,6 +57,9 @@ StereoRenderer::StereoRenderer(const World& world, const core::CameraConfig& cam
       noise_seed_(noise_seed),
       textures_(world.texture_seed),
       height_m_(camera.mount_height_m) {
+  // Callers check the config with check_camera_supported() and report it; reaching here with
+  // a tilted camera is a programming error.
+  STEREOSCOUT_CHECK(check_camera_supported(camera).empty(), "StereoRenderer needs camera.mount_tilt_deg == 0");
   const auto width = static_cast<std::size_t>(camera.width_px);
   const auto height = static_cast<std::size_t>(camera.height_px);
   hits_.resize(static_cast<std::size_t>(sim.max_hits_per_column));

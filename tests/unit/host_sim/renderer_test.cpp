@@ -198,6 +198,25 @@ TEST(Renderer, PanTurnsTheView) {
   EXPECT_NEAR(panned.depth.at<float>(239, 320), turned.depth.at<float>(239, 320), 0.15);
 }
 
+TEST(Renderer, PeopleWalkThroughTheView) {
+  core::SimConfig sim;
+  sim.image_noise_sigma = 0.0;
+  // A person walks along y = 3 from x = 4 to x = 8 and back at 1 m/s; the camera at x = 2.1
+  // looks along the same line (east), so the person is straight ahead at 1.9 m - 0.25 m at t = 0.
+  const World world = load_or_fail(room_yaml("brick") + "people:\n  - {waypoints: [[4, 3], [8, 3]], speed: 1.0}\n");
+  const core::CameraConfig camera;
+  StereoRenderer renderer(world, camera, sim, 1);
+  cv::Mat left(camera.height_px, camera.width_px, CV_8UC1);
+  cv::Mat right(camera.height_px, camera.width_px, CV_8UC1);
+  cv::Mat depth(camera.height_px, camera.width_px, CV_32FC1);
+  renderer.render(core::Pose2{2.0, 3.0, 0.0}, 0.0, 0.0, 0, left, right, &depth);
+  EXPECT_NEAR(depth.at<float>(239, 320), 1.65F, 1e-3F);
+  renderer.render(core::Pose2{2.0, 3.0, 0.0}, 0.0, 2.0, 0, left, right, &depth);
+  EXPECT_NEAR(depth.at<float>(239, 320), 3.65F, 1e-3F);
+  // Above the head (1.7 m high: from row 119 down) the ceiling shows, Z = f (h - 2.5) / (r - cy).
+  EXPECT_NEAR(depth.at<float>(100, 320), 400.0 * (0.6 - 2.5) / (100 - 239.5), 1e-3);
+}
+
 TEST(Renderer, RenderingDoesNotAllocate) {
   const World world = lab();
   const core::CameraConfig camera;
