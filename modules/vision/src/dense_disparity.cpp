@@ -153,21 +153,21 @@ void DenseDisparityMatcher::cost_row(int y, std::uint8_t* costs) const {
   }
 }
 
-// Horizontal box sum of the column sums, per disparity.
+// Horizontal box sum of the column sums, per disparity: a sum of shifted rows rather than a
+// running sum, so the loop has no carried dependency and vectorises.
 void DenseDisparityMatcher::aggregate_row() {
-  const int window = 2 * radius_ + 1;
   for (int d = 0; d < disparities_; ++d) {
     const std::uint16_t* column = &column_sums_[static_cast<std::size_t>(d) * static_cast<std::size_t>(width_)];
     std::uint16_t* out = &aggregated_[static_cast<std::size_t>(d) * static_cast<std::size_t>(width_)];
-    std::uint32_t sum = 0;
-    for (int x = 0; x < window && x < width_; ++x) {
-      sum += column[x];
+    const int begin = radius_;
+    const int end = width_ - radius_;
+    for (int x = begin; x < end; ++x) {
+      out[x] = column[x - radius_];
     }
-    for (int x = radius_; x < width_ - radius_; ++x) {
-      out[x] = static_cast<std::uint16_t>(sum);
-      if (x + radius_ + 1 < width_) {
-        sum += column[x + radius_ + 1];
-        sum -= column[x - radius_];
+    for (int k = -radius_ + 1; k <= radius_; ++k) {
+      const std::uint16_t* shifted = column + k;
+      for (int x = begin; x < end; ++x) {
+        out[x] = static_cast<std::uint16_t>(out[x] + shifted[x]);
       }
     }
   }
@@ -204,10 +204,17 @@ void DenseDisparityMatcher::find_winners() {
   }
   for (int d = 0; d < disparities_; ++d) {
     const std::uint16_t* costs = &aggregated_[static_cast<std::size_t>(d) * static_cast<std::size_t>(width_)];
+    // Distinct arrays: __restrict lets the compiler vectorise this loop.
+    const std::int16_t* __restrict best = best_disparity_.data();
+    std::uint16_t* __restrict second = second_cost_.data();
+    const auto disparity = static_cast<std::int16_t>(d);
     for (int x = first_x + d; x <= last_x; ++x) {
-      const int gap = d - best_disparity_[static_cast<std::size_t>(x)];
-      const bool candidate = (gap > 1 || gap < -1) && costs[x] < second_cost_[static_cast<std::size_t>(x)];
-      second_cost_[static_cast<std::size_t>(x)] = candidate ? costs[x] : second_cost_[static_cast<std::size_t>(x)];
+      // |d - best| > 1 with signed 16-bit compares (SSE2 has no unsigned ones).
+      const auto gap = static_cast<std::int16_t>(disparity - best[x]);
+      const int far = static_cast<int>(gap > 1) | static_cast<int>(gap < -1);
+      // kNoCost where adjacent: an OR with all ones, so the load is unconditional (vectorises).
+      const auto masked = static_cast<std::uint16_t>(costs[x] | static_cast<std::uint16_t>(far - 1));
+      second[x] = masked < second[x] ? masked : second[x];
     }
   }
 }

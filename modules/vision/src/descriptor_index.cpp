@@ -50,6 +50,10 @@ DescriptorIndex::DescriptorIndex(const DescriptorIndexParams& params)
   reset_tree();
 }
 
+void DescriptorIndex::set_max_leaf_checks(int leaf_checks) {
+  params_.max_leaf_checks = std::max(leaf_checks, 1);
+}
+
 void DescriptorIndex::reset_tree() {
   nodes_used_ = 0;
   root_ = allocate_leaf();

@@ -85,6 +85,9 @@ class DescriptorIndex {
   // Best-bin-first search without changing any entry (the stats count it).
   IndexNeighbour nearest(const Descriptor& descriptor);
 
+  // Changes the search bound (benchmarks, tests); capped by the heap sized at construction.
+  void set_max_leaf_checks(int leaf_checks);
+
   // The landmark id of an entry (0 while it is a candidate).
   std::uint32_t landmark_id_of(std::uint32_t entry) const { return entries_[entry].landmark_id; }
   const DescriptorIndexStats& stats() const { return stats_; }
