@@ -36,10 +36,21 @@ void VisionFrontEnd::extract_keys(const core::StereoFrame& frame) {
   }
 }
 
-void VisionFrontEnd::observe_landmarks(const core::StereoFrame& frame,
-                                       core::FixedVector<core::LandmarkObservation>& observations) {
+bool VisionFrontEnd::frame_is_usable(const core::StereoFrame& frame) const {
+  const auto usable = [&](const cv::Mat& image) {
+    return image.type() == CV_8UC1 && image.cols == calibration_.width_px && image.rows == calibration_.height_px;
+  };
+  return usable(frame.left) && usable(frame.right);
+}
+
+core::Status VisionFrontEnd::observe_landmarks(const core::StereoFrame& frame,
+                                               core::FixedVector<core::LandmarkObservation>& observations) {
   observations.clear();
   frame_stats_ = FrontEndFrameStats{};
+  if (!frame_is_usable(frame)) {
+    ++rejected_frames_;
+    return {core::StatusCode::invalid_input, "stereo pair is not 8-bit grey of the calibrated size"};
+  }
   extract_keys(frame);
   matcher_.match(left_keys_, right_keys_, matches_);
   const std::uint64_t frame_index = frame_counter_++;
@@ -66,11 +77,17 @@ void VisionFrontEnd::observe_landmarks(const core::StereoFrame& frame,
     observation->covariance = point.covariance;
     ++frame_stats_.landmark_observations;
   }
+  return core::Status::success();
 }
 
-void VisionFrontEnd::scan(const core::StereoFrame& frame, core::DepthScan& scan) {
+core::Status VisionFrontEnd::scan(const core::StereoFrame& frame, core::DepthScan& scan) {
+  if (!frame_is_usable(frame)) {
+    ++rejected_frames_;
+    return {core::StatusCode::invalid_input, "stereo pair is not 8-bit grey of the calibrated size"};
+  }
   dense_.compute(frame.left, frame.right, disparity_);
   scanner_.compute(disparity_, frame.pan_rad, frame.timestamp_ns, scan);
+  return core::Status::success();
 }
 
 }  // namespace stereoscout::vision

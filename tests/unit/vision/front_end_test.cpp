@@ -43,7 +43,7 @@ TEST(VisionFrontEnd, LandmarksTriangulateToGroundTruthWithinCovariance) {
   const test::Rendering view = test::render(test::textured_room(), camera, paper_mount(), core::Pose2{0.0, 0.0, 0.1});
   VisionFrontEnd front_end(vision_config(1), core::RobotConfig{}, camera, paper_mount());
   core::FixedVector<core::LandmarkObservation> observations(front_end.max_observations());
-  front_end.observe_landmarks(view.frame, observations);
+  ASSERT_TRUE(front_end.observe_landmarks(view.frame, observations).ok());
   ASSERT_GT(observations.size(), 100U);
   std::vector<double> chi_square;
   for (const auto& observation : observations) {
@@ -72,10 +72,10 @@ TEST(VisionFrontEnd, SameFeatureFromTwoPosesKeepsItsIdentity) {
   VisionFrontEnd front_end(vision_config(1), core::RobotConfig{}, camera, paper_mount());
   core::FixedVector<core::LandmarkObservation> observations(front_end.max_observations());
   const test::Rendering first = test::render(scene, camera, paper_mount(), core::Pose2{0.0, 0.0, 0.0});
-  front_end.observe_landmarks(first.frame, observations);
+  ASSERT_TRUE(front_end.observe_landmarks(first.frame, observations).ok());
   const auto first_world = to_world(observations, first.world_from_right_camera);
   const test::Rendering second = test::render(scene, camera, paper_mount(), core::Pose2{0.10, 0.03, 0.06});
-  front_end.observe_landmarks(second.frame, observations);
+  ASSERT_TRUE(front_end.observe_landmarks(second.frame, observations).ok());
   const auto second_world = to_world(observations, second.world_from_right_camera);
   std::size_t shared = 0;
   std::size_t consistent = 0;
@@ -101,7 +101,7 @@ TEST(VisionFrontEnd, FreshFeaturesWaitForEnoughFrames) {
   const core::Pose2 poses[] = {{0.0, 0.0, 0.0}, {0.03, 0.0, 0.01}, {0.06, 0.0, 0.02}};
   std::size_t handed_on[3] = {};
   for (int i = 0; i < 3; ++i) {
-    front_end.observe_landmarks(test::render(scene, camera, paper_mount(), poses[i]).frame, observations);
+    ASSERT_TRUE(front_end.observe_landmarks(test::render(scene, camera, paper_mount(), poses[i]).frame, observations).ok());
     handed_on[i] = observations.size();
   }
   EXPECT_EQ(handed_on[0], 0U);
@@ -138,6 +138,21 @@ TEST(VisionFrontEnd, ParallelSiftGivesTheSequentialResult) {
   }
 }
 
+TEST(VisionFrontEnd, BadPairIsSkippedAndCounted) {
+  const StereoCalibration camera;
+  VisionFrontEnd front_end(vision_config(1), core::RobotConfig{}, camera, paper_mount());
+  core::FixedVector<core::LandmarkObservation> observations(front_end.max_observations());
+  core::DepthScan scan;
+  front_end.allocate_scan(scan);
+  core::StereoFrame wrong_size;
+  wrong_size.allocate(320, 240);
+  EXPECT_EQ(front_end.observe_landmarks(wrong_size, observations).code, core::StatusCode::invalid_input);
+  core::StereoFrame empty;
+  EXPECT_EQ(front_end.scan(empty, scan).code, core::StatusCode::invalid_input);
+  EXPECT_EQ(front_end.rejected_frames(), 2U);
+  EXPECT_TRUE(observations.empty());
+}
+
 // The dense path (block matcher and scan) does not allocate once built; SIFT does, inside
 // OpenCV, and the count is printed so the figure in docs/results.md can be checked.
 TEST(VisionFrontEnd, AllocationsPerFrame) {
@@ -150,7 +165,7 @@ TEST(VisionFrontEnd, AllocationsPerFrame) {
   front_end.observe_landmarks(view.frame, observations);  // warm-up: OpenCV's buffers grow
   {
     const core::AllocationScope scope;
-    front_end.scan(view.frame, scan);
+    EXPECT_TRUE(front_end.scan(view.frame, scan).ok());
     EXPECT_EQ(scope.allocations(), 0U);
   }
   const core::AllocationScope scope;

@@ -87,7 +87,7 @@ TEST(KittiFrontEnd, IdentitiesLandOnTheSameWorldPoint) {
     pair.left = cv::imread(folder + "/image_0" + name, cv::IMREAD_GRAYSCALE);
     pair.right = cv::imread(folder + "/image_1" + name, cv::IMREAD_GRAYSCALE);
     ASSERT_FALSE(pair.left.empty() || pair.right.empty());
-    front_end.observe_landmarks(pair, observations);
+    ASSERT_TRUE(front_end.observe_landmarks(pair, observations).ok());
     matches += front_end.last_frame_stats().stereo_matches;
     // Our points are in the right camera (cam1); KITTI poses are of cam0, a baseline left.
     Eigen::Isometry3d world_from_right = poses[static_cast<std::size_t>(frame)];

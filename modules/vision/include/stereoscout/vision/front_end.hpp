@@ -18,6 +18,7 @@
 #include "stereoscout/core/fixed_vector.hpp"
 #include "stereoscout/core/geometry.hpp"
 #include "stereoscout/core/messages.hpp"
+#include "stereoscout/core/status.hpp"
 #include "stereoscout/vision/calibration.hpp"
 #include "stereoscout/vision/dense_disparity.hpp"
 #include "stereoscout/vision/descriptor_index.hpp"
@@ -45,7 +46,9 @@ class VisionFrontEnd {
 
   // Clears `observations` and fills it with the identified landmarks of this pair, in the
   // order of the right image's keys (strongest first). Each call is one frame of the index.
-  void observe_landmarks(const core::StereoFrame& frame, core::FixedVector<core::LandmarkObservation>& observations);
+  // A pair that is not two 8-bit grey images of the calibrated size is skipped, counted in
+  // rejected_frames(), and reported as invalid_input.
+  core::Status observe_landmarks(const core::StereoFrame& frame, core::FixedVector<core::LandmarkObservation>& observations);
 
   // The stereo matches of the last observe_landmarks call, with the keys they refer to.
   const core::FixedVector<StereoMatch>& last_matches() const { return matches_; }
@@ -53,8 +56,10 @@ class VisionFrontEnd {
   const core::FixedVector<Keypoint>& last_right_keys() const { return right_keys_; }
 
   void allocate_scan(core::DepthScan& scan) const { scanner_.allocate(scan); }
-  // Dense disparity and the 2.5D scan of this pair (scan sized by allocate_scan).
-  void scan(const core::StereoFrame& frame, core::DepthScan& scan);
+  // Dense disparity and the 2.5D scan of this pair (scan sized by allocate_scan). A bad pair
+  // is skipped (scan unchanged), counted, and reported as invalid_input.
+  core::Status scan(const core::StereoFrame& frame, core::DepthScan& scan);
+  std::uint64_t rejected_frames() const { return rejected_frames_; }
   const cv::Mat& last_disparity() const { return disparity_; }
 
   const FrontEndFrameStats& last_frame_stats() const { return frame_stats_; }
@@ -63,6 +68,7 @@ class VisionFrontEnd {
 
  private:
   void extract_keys(const core::StereoFrame& frame);
+  bool frame_is_usable(const core::StereoFrame& frame) const;
 
   StereoCalibration calibration_;
   StereoNoise noise_;
@@ -79,6 +85,7 @@ class VisionFrontEnd {
   cv::Mat disparity_;
   ObstacleScanner scanner_;
   std::uint64_t frame_counter_ = 0;
+  std::uint64_t rejected_frames_ = 0;
   FrontEndFrameStats frame_stats_;
 };
 
