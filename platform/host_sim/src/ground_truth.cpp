@@ -52,10 +52,6 @@ bool ObstacleBand::disc_collides(const Eigen::Vector2d& point, double radius) co
   return false;
 }
 
-bool ObstacleBand::point_blocked(const Eigen::Vector2d& point, double half_width) const {
-  return disc_collides(point, half_width);
-}
-
 Eigen::Vector2i GroundTruthGrid::cell_of(const Eigen::Vector2d& point) const {
   const Eigen::Vector2d cell = (point - origin) / resolution_m;
   return {static_cast<int>(std::floor(cell.x())), static_cast<int>(std::floor(cell.y()))};

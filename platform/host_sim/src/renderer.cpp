@@ -146,7 +146,7 @@ void StereoRenderer::push_hit(const Hit& hit) {
   hits_[hit_count_++] = hit;
 }
 
-void StereoRenderer::collect_hits(const Eigen::Vector2d& center, const Eigen::Vector2d& direction, double /*time_s*/) {
+void StereoRenderer::collect_hits(const Eigen::Vector2d& center, const Eigen::Vector2d& direction) {
   hit_count_ = 0;
   const double direction_norm = direction.norm();
   auto gain_at = [&](double depth) {
@@ -237,8 +237,7 @@ void StereoRenderer::collect_hits(const Eigen::Vector2d& center, const Eigen::Ve
             [](const Hit& l, const Hit& r) { return l.depth_in < r.depth_in; });
 }
 
-void StereoRenderer::fill_vertical(const Hit& hit, const Eigen::Vector2d& /*center*/, const Eigen::Vector2d& /*direction*/,
-                                   std::uint8_t* pixels, float* depth) {
+void StereoRenderer::fill_vertical(const Hit& hit, std::uint8_t* pixels, float* depth) {
   const double f = camera_.focal_px;
   const double cy = camera_.principal_y_px;
   const double z_depth = hit.depth_in;
@@ -302,7 +301,7 @@ void StereoRenderer::shade_column(const Eigen::Vector2d& center, const Eigen::Ve
   const auto ceiling = static_cast<float>(world_.ceiling_height);
   for (std::size_t i = 0; i < hit_count_; ++i) {
     const Hit& hit = hits_[i];
-    fill_vertical(hit, center, direction, pixels, depth);
+    fill_vertical(hit, pixels, depth);
     if (hit.solid && hit.z_max < height_m_) {
       fill_horizontal(hit.z_max, hit.depth_in, hit.depth_out, *hit.surface, hit.gain, center, direction, pixels, depth, false);
     }
@@ -323,14 +322,14 @@ void StereoRenderer::shade_column(const Eigen::Vector2d& center, const Eigen::Ve
   }
 }
 
-void StereoRenderer::render_view(const Eigen::Vector2d& center, double heading, double time_s, cv::Mat& image_transposed,
+void StereoRenderer::render_view(const Eigen::Vector2d& center, double heading, cv::Mat& image_transposed,
                                  cv::Mat* depth_transposed) {
   const Eigen::Vector2d forward(std::cos(heading), std::sin(heading));
   const Eigen::Vector2d right(std::sin(heading), -std::cos(heading));
   cv::Mat& depth = depth_transposed != nullptr ? *depth_transposed : depth_transposed_;
   for (int u = 0; u < camera_.width_px; ++u) {
     const Eigen::Vector2d direction = forward + column_x_[static_cast<std::size_t>(u)] * right;
-    collect_hits(center, direction, time_s);
+    collect_hits(center, direction);
     shade_column(center, direction, image_transposed.ptr<std::uint8_t>(u), depth.ptr<float>(u));
   }
 }
@@ -353,10 +352,10 @@ void StereoRenderer::render(const core::Pose2& robot_pose, double pan_rad, doubl
   for (std::size_t i = 0; i < people_positions_.size(); ++i) people_positions_[i] = world_.person_position(i, time_s);
   const CameraPlacement placement = place_camera(robot_pose, pan_rad);
   height_m_ = placement.height_m;
-  render_view(placement.right_center, placement.heading_rad, time_s, right_transposed_, &depth_transposed_);
+  render_view(placement.right_center, placement.heading_rad, right_transposed_, &depth_transposed_);
   cv::transpose(right_transposed_, right);
   if (depth_right != nullptr) cv::transpose(depth_transposed_, *depth_right);
-  render_view(placement.left_center, placement.heading_rad, time_s, left_transposed_, nullptr);
+  render_view(placement.left_center, placement.heading_rad, left_transposed_, nullptr);
   cv::transpose(left_transposed_, left);
   add_noise(left, frame_index, 0);
   add_noise(right, frame_index, 1);

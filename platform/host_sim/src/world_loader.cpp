@@ -38,7 +38,13 @@ class WorldParser {
   // Reports keys of `map` outside `allowed` (plus the surface keys when `surface` is set).
   void check_keys(const cv::FileNode& map, const std::string& path, std::initializer_list<const char*> allowed,
                   bool surface) {
-    for (const std::string& key : map.keys()) {
+    const std::vector<std::string> keys = map.keys();
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      const std::string& key = keys[i];
+      if (std::find(keys.begin(), keys.begin() + static_cast<std::ptrdiff_t>(i), key) != keys.begin() + static_cast<std::ptrdiff_t>(i)) {
+        error(join(path, key), "key given more than once");
+        continue;
+      }
       const bool known = std::any_of(allowed.begin(), allowed.end(), [&](const char* k) { return key == k; }) ||
                          (surface && std::any_of(std::begin(kSurfaceKeys), std::end(kSurfaceKeys),
                                                  [&](const char* k) { return key == k; }));

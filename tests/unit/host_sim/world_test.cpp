@@ -74,6 +74,7 @@ TEST(World, UnknownKeyIsRejectedWithFileAndKey) {
   const std::string error = first_error(room_yaml("brick") + "cylinders:\n  - {center: [1, 1], radius: 0.2, z: [0, 1], colour: red}\n");
   EXPECT_EQ(error, "bad.yaml: cylinders[0].colour: unknown key");
   EXPECT_EQ(first_error(room_yaml("brick") + "gravity: 9.81\n"), "bad.yaml: gravity: unknown key");
+  EXPECT_EQ(first_error(room_yaml("brick") + "ceiling_height: 3.0\n"), "bad.yaml: ceiling_height: key given more than once");
 }
 
 TEST(World, OpenPolygonIsRejected) {

@@ -22,8 +22,6 @@ class ObstacleBand {
 
   // True when a disc of `radius` centred at `point` overlaps a blocking obstacle.
   bool disc_collides(const Eigen::Vector2d& point, double radius) const;
-  // True when `point` lies inside or on an obstacle (walls count within `half_width`).
-  bool point_blocked(const Eigen::Vector2d& point, double half_width) const;
 
   struct Segment {
     Eigen::Vector2d a;
@@ -65,8 +63,9 @@ struct GroundTruthGrid {
 };
 
 // Rasterises the static obstacles of the band [band_low_m, band_high_m] (use
-// sim.floor_tolerance_m and robot.height_m): a cell is occupied when an obstacle overlaps it.
-// Everything else is free. The grid covers the world's bounds plus `margin_m`.
+// sim.floor_tolerance_m and robot.height_m): a cell is occupied when an obstacle comes within
+// half the cell's diagonal of its centre (so a wall is a connected line of cells at any
+// resolution). Everything else is free. The grid covers the world's bounds plus `margin_m`.
 GroundTruthGrid rasterize_world(const World& world, double resolution_m, double band_low_m, double band_high_m,
                                 double margin_m = 0.5);
 

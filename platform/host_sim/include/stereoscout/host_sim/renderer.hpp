@@ -69,17 +69,15 @@ class StereoRenderer {
   };
 
  private:
-  void collect_hits(const Eigen::Vector2d& center, const Eigen::Vector2d& direction, double time_s);
+  void collect_hits(const Eigen::Vector2d& center, const Eigen::Vector2d& direction);
   void push_hit(const Hit& hit);
   void shade_column(const Eigen::Vector2d& center, const Eigen::Vector2d& direction, std::uint8_t* pixels,
                     float* depth);
-  void fill_vertical(const Hit& hit, const Eigen::Vector2d& center, const Eigen::Vector2d& direction,
-                     std::uint8_t* pixels, float* depth);
+  void fill_vertical(const Hit& hit, std::uint8_t* pixels, float* depth);
   void fill_horizontal(float plane_z, float from_depth, float to_depth, const Surface& surface, float gain,
                        const Eigen::Vector2d& center, const Eigen::Vector2d& direction, std::uint8_t* pixels,
                        float* depth, bool floor_regions);
-  void render_view(const Eigen::Vector2d& center, double heading, double time_s, cv::Mat& image_transposed,
-                   cv::Mat* depth_transposed);
+  void render_view(const Eigen::Vector2d& center, double heading, cv::Mat& image_transposed, cv::Mat* depth_transposed);
   void add_noise(cv::Mat& image, std::uint32_t frame_index, std::uint32_t camera_index);
   std::uint8_t floor_region_at(double x, double y) const;
   float floor_gain_at(double x, double y) const;
