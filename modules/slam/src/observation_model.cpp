@@ -5,6 +5,11 @@
 
 namespace stereoscout::slam {
 
+core::CameraMount camera_mount_from_config(const core::CameraConfig& camera) {
+  return core::CameraMount{camera.mount_x_m, camera.mount_y_m, camera.mount_height_m,
+                           core::degrees_to_radians(camera.mount_tilt_deg)};
+}
+
 RobotFrameObservation to_robot_frame(const core::LandmarkObservation& observation,
                                      const Eigen::Isometry3d& robot_from_sensor) {
   RobotFrameObservation moved;

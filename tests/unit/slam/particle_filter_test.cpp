@@ -278,6 +278,19 @@ TEST(ParticleFilter, FullPoolsDegradeAndAreCounted) {
   EXPECT_LE(filter.landmarks().estimates_in_use(), 25u);
 }
 
+TEST(ObservationModel, CameraMountComesFromTheCameraConfig) {
+  core::CameraConfig camera;
+  camera.mount_x_m = 0.2;
+  camera.mount_y_m = -0.05;
+  camera.mount_height_m = 0.7;
+  camera.mount_tilt_deg = 10.0;
+  const core::CameraMount mount = camera_mount_from_config(camera);
+  EXPECT_EQ(mount.x_m, 0.2);
+  EXPECT_EQ(mount.y_m, -0.05);
+  EXPECT_EQ(mount.height_m, 0.7);
+  EXPECT_NEAR(mount.tilt_rad, 10.0 * core::kPi / 180.0, 1e-15);
+}
+
 TEST(ObservationModel, RangeBearingCovarianceFollowsTheJacobian) {
   const core::LandmarkObservation o = range_bearing_observation(3, 2.0, 0.5 * core::kPi, 0.1, 0.05, 0.01);
   EXPECT_NEAR(o.point_camera.x(), 0.0, 1e-12);

@@ -10,11 +10,16 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "stereoscout/core/config/camera.hpp"
 #include "stereoscout/core/geometry.hpp"
 #include "stereoscout/core/messages.hpp"
 #include "stereoscout/slam/landmark_map.hpp"
 
 namespace stereoscout::slam {
+
+// Where config section `camera` puts the camera on the robot (the filter's stereo update turns
+// it by the pan angle of each frame).
+core::CameraMount camera_mount_from_config(const core::CameraConfig& camera);
 
 // An observation moved into the robot frame (done once per update, for all particles).
 struct RobotFrameObservation {
