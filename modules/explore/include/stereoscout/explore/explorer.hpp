@@ -1,0 +1,119 @@
+#pragma once
+// The exploration behaviour (paper VI) as one tick function the stack calls every control
+// tick: look around 360 degrees (pan unit, or turn in place without one), choose the goal of
+// highest value H, plan A* to it, follow the plan; after every observation update rebuild the
+// navigation map, check the rest of the plan and replan when it is blocked; no safe plan ->
+// another goal; a goal that keeps failing is blacklisted. Exploration ends when no goal is
+// worth more than min_goal_value or at time_limit_s, then the robot returns to the start if
+// configured.
+//
+// Safety, every tick: the emergency stop commands zero velocity in the same call; before any
+// forward motion the next stretch of the plan (and the point just ahead of the robot) is
+// checked against the cells the current grid holds as occupied, and the robot stops if the
+// disc would touch one it does not already touch.
+//
+// All buffers are allocated by the constructor; step() allocates nothing.
+
+#include <cstdint>
+
+#include "stereoscout/core/geometry.hpp"
+#include "stereoscout/core/messages.hpp"
+#include "stereoscout/explore/goal_value.hpp"
+#include "stereoscout/explore/grid_view.hpp"
+#include "stereoscout/explore/navigation_map.hpp"
+#include "stereoscout/explore/path_follower.hpp"
+#include "stereoscout/explore/path_planner.hpp"
+
+namespace stereoscout::explore {
+
+struct ExploreInput {
+  double time_s = 0.0;
+  core::Pose2 pose;       // map frame: the ML particle's pose (ground truth in simulation tests)
+  double pan_rad = 0.0;   // current angle of the pan unit
+  GridView grid;          // current grid; must stay valid during the call only
+  bool grid_updated = false;    // an observation update changed the grid since the last call
+  bool emergency_stop = false;  // from the Gpio shim
+};
+
+enum class ExploreState : std::uint8_t { look_around, choose_goal, drive, returning, finished };
+const char* to_string(ExploreState state);
+
+enum class FinishReason : std::uint8_t { none, explored, time_limit };
+
+struct ExploreOutput {
+  core::DriveCommand drive;    // already within the robot's limits
+  double pan_target_rad = 0.0;  // where the pan unit should point (0 = forward)
+  ExploreState state = ExploreState::look_around;
+};
+
+struct ExploreCounters {
+  std::uint64_t map_rebuilds = 0;
+  std::uint64_t goals_chosen = 0;
+  std::uint64_t goals_reached = 0;
+  std::uint64_t goals_abandoned = 0;   // value fell below min_goal_value while driving
+  std::uint64_t goal_failures = 0;     // no plan, or no progress for stuck_timeout_s
+  std::uint64_t goals_blacklisted = 0;
+  std::uint64_t plan_failures = 0;
+  std::uint64_t replans = 0;           // plan blocked after an observation update
+  std::uint64_t stuck = 0;
+  std::uint64_t safety_stops = 0;
+  std::uint64_t emergency_stop_ticks = 0;
+  std::uint64_t looks = 0;
+  std::uint64_t return_failures = 0;
+};
+
+class Explorer {
+ public:
+  explicit Explorer(const ExploreParams& params);
+
+  ExploreOutput step(const ExploreInput& input);
+
+  ExploreState state() const { return state_; }
+  FinishReason finish_reason() const { return finish_reason_; }
+  const Goal& goal() const { return goal_; }
+  const Plan& plan() const { return plan_; }
+  const ExploreCounters& counters() const { return counters_; }
+  const NavigationMap& navigation_map() const { return map_; }
+  const GoalValue& goal_value() const { return goal_value_; }
+
+ private:
+  void start(const ExploreInput& input);
+  void rebuild(const ExploreInput& input);
+  void check_plan(const ExploreInput& input);
+  bool replan(const ExploreInput& input);
+  void choose_goal(const ExploreInput& input);
+  void finish_exploring(const ExploreInput& input, FinishReason reason);
+  void goal_failed();
+  void begin_look(const ExploreInput& input);
+  void look_step(const ExploreInput& input, ExploreOutput& output);
+  void drive_step(const ExploreInput& input, ExploreOutput& output);
+  bool stretch_is_clear(const GridView& grid, const core::Pose2& pose) const;
+  bool disc_is_clear(const GridView& grid, const Eigen::Vector2d& centre, const Eigen::Vector2d& robot) const;
+  Eigen::Vector2i cell_of(const core::Pose2& pose) const;
+
+  ExploreParams params_;
+  NavigationMap map_;
+  GoalValue goal_value_;
+  GoalMemory memory_;
+  PathPlanner planner_;
+  PathFollower follower_;
+  Plan plan_;
+  Goal goal_;
+  ExploreCounters counters_;
+  ExploreState state_ = ExploreState::look_around;
+  FinishReason finish_reason_ = FinishReason::none;
+  bool started_ = false;
+  bool rebuild_needed_ = true;
+  core::Pose2 start_pose_;
+  double start_time_s_ = 0.0;
+  // Look around.
+  int look_step_ = 0;
+  double look_turned_rad_ = 0.0;
+  double look_last_heading_ = 0.0;
+  double pan_target_rad_ = 0.0;
+  // Progress towards the goal.
+  double best_goal_distance_m_ = 0.0;
+  double last_progress_time_s_ = 0.0;
+};
+
+}  // namespace stereoscout::explore

@@ -1,0 +1,78 @@
+#pragma once
+// The exploration value of a goal cell (paper VI): H(s) = sum over rays theta every
+// ray_step_deg of V(s, theta). A ray from the centre of s stops at the first cell s' that is
+// not free: V = 0 if s' is occupied (or off the grid); V = exp(-0.5 (|s' - s| - r*)^2 /
+// sigma^2) if s' is unknown. Rays are cut at r* + ray_cap_sigmas * sigma; a ray that meets
+// only free cells up to the cap adds 0.
+//
+// Goal selection is argmax H over cells that are free, safely traversable (not within the
+// robot radius plus the safety margin of an obstacle), reachable from the robot, and not near
+// a remembered (blacklisted or visited) goal. Speed: H is evaluated only on a lattice of
+// candidate_stride_cells spacing and only where an unknown cell lies within the ray cap (the
+// distance transform of the navigation map says so, H is 0 elsewhere), then at full
+// resolution in the lattice cell around the best candidate.
+
+#include <cstdint>
+
+#include "stereoscout/core/fixed_vector.hpp"
+#include "stereoscout/explore/grid_view.hpp"
+#include "stereoscout/explore/navigation_map.hpp"
+
+namespace stereoscout::explore {
+
+struct Goal {
+  bool valid = false;
+  Eigen::Vector2i cell = Eigen::Vector2i::Zero();
+  Eigen::Vector2d position = Eigen::Vector2d::Zero();
+  double value = 0.0;
+};
+
+// Goals that failed, or were reached already: a fixed list.
+class GoalMemory {
+ public:
+  GoalMemory(std::size_t capacity, double radius_m, int failures_before_blacklist);
+  // Counts a failure of the goal at `position`; returns true when it is now blacklisted.
+  bool record_failure(const Eigen::Vector2d& position);
+  // A reached goal is never chosen again (it was looked around from).
+  void record_visit(const Eigen::Vector2d& position);
+  // True when a candidate at `position` is near a blacklisted or visited goal.
+  bool excluded(const Eigen::Vector2d& position) const;
+  std::uint64_t blacklisted() const { return blacklisted_; }
+  std::uint64_t forgotten() const { return forgotten_; }  // memory was full
+
+ private:
+  struct Entry {
+    Eigen::Vector2d position;
+    int failures = 0;
+  };
+  Entry* find(const Eigen::Vector2d& position);
+  core::FixedVector<Entry> entries_;
+  double radius2_;
+  int failures_before_blacklist_;
+  std::uint64_t blacklisted_ = 0;
+  std::uint64_t forgotten_ = 0;
+};
+
+class GoalValue {
+ public:
+  explicit GoalValue(const ExploreParams& params);
+
+  // V(s, theta) for ray `ray_index` (theta = ray_index * ray_step) from cell (x, y).
+  double ray_value(const GridView& grid, int x, int y, std::size_t ray_index) const;
+  // H(s).
+  double value(const GridView& grid, int x, int y) const;
+  std::size_t ray_count() const { return directions_.size(); }
+
+  // argmax H over the candidates (see above); `map` must have compute_reachable() done.
+  // Returns an invalid goal when no candidate is worth more than zero.
+  Goal select(const NavigationMap& map, const GoalMemory& memory) const;
+  bool is_candidate(const NavigationMap& map, const GoalMemory& memory, int x, int y) const;
+  std::uint64_t values_computed() const { return values_computed_; }
+
+ private:
+  ExploreParams params_;
+  core::FixedVector<Eigen::Vector2d> directions_;
+  mutable std::uint64_t values_computed_ = 0;
+};
+
+}  // namespace stereoscout::explore

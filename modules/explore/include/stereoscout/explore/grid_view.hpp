@@ -1,0 +1,63 @@
+#pragma once
+// What the exploration module needs from the occupancy grid: a plain, read-only view of cell
+// states. The stack converts the ML grid with the ROS map_server thresholds; nothing here
+// depends on the occupancy module's internals. Also the derived settings of the module.
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+
+#include <Eigen/Core>
+
+#include "stereoscout/core/config/camera.hpp"
+#include "stereoscout/core/config/explore.hpp"
+#include "stereoscout/core/config/robot.hpp"
+
+namespace stereoscout::explore {
+
+enum class CellState : std::uint8_t { unknown = 0, free = 1, occupied = 2 };
+
+// Row-major cells, row 0 at the lowest y; cell (x, y) covers
+// [origin + resolution * (x, y), origin + resolution * (x + 1, y + 1)).
+struct GridView {
+  int width = 0;
+  int height = 0;
+  double resolution_m = 0.1;
+  Eigen::Vector2d origin_m = Eigen::Vector2d::Zero();
+  const std::uint8_t* cells = nullptr;  // CellState values
+
+  bool contains(int x, int y) const { return x >= 0 && y >= 0 && x < width && y < height; }
+  std::size_t index(int x, int y) const {
+    return static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
+  }
+  CellState at(int x, int y) const { return static_cast<CellState>(cells[index(x, y)]); }
+  Eigen::Vector2d center(int x, int y) const { return origin_m + resolution_m * Eigen::Vector2d(x + 0.5, y + 0.5); }
+  Eigen::Vector2i cell_of(const Eigen::Vector2d& point) const {
+    const Eigen::Vector2d local = (point - origin_m) / resolution_m;
+    return {static_cast<int>(std::floor(local.x())), static_cast<int>(std::floor(local.y()))};
+  }
+};
+
+// Everything the module uses, in SI units, derived once from the config sections.
+struct ExploreParams {
+  core::ExploreConfig explore;
+  double robot_radius_m = 0.35;
+  double max_speed_mps = 0.12;
+  double max_turn_rate_rad_s = 0.0;
+  bool has_pan_unit = true;
+  int max_width = 700;   // grid size the buffers are allocated for
+  int max_height = 700;
+
+  static ExploreParams from_config(const core::ExploreConfig& explore, const core::RobotConfig& robot,
+                                   const core::CameraConfig& camera, int max_width, int max_height);
+  // A cell centre closer than this to an occupied cell centre is a collision: the robot radius
+  // plus half a cell for the discretisation of the obstacle's true surface.
+  double lethal_distance_m(double resolution_m) const { return robot_radius_m + 0.5 * resolution_m; }
+  // Goals keep this clearance; paths pay a high cost below it.
+  double safe_distance_m(double resolution_m) const { return lethal_distance_m(resolution_m) + explore.safety_margin_m; }
+  double ray_cap_m() const {
+    return explore.preferred_distance_m + explore.ray_cap_sigmas * explore.distance_sigma_m;
+  }
+};
+
+}  // namespace stereoscout::explore

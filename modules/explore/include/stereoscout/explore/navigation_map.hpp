@@ -1,0 +1,81 @@
+#pragma once
+// The grid as the planner sees it, rebuilt after every observation update: distances to the
+// nearest occupied and to the nearest unknown cell (Euclidean distance transform, two passes
+// propagating the nearest site), the traversability class of each cell for the robot's
+// footprint, step costs for A*, and the set of cells reachable from the robot (flood fill).
+//
+// Speed: all work is confined to a window, the bounding box of the known cells grown by the
+// ray cap (cells farther out are unknown and worth nothing), so early in a run only a small
+// part of the 700 x 700 grid is touched. Buffers are sized at start-up for the full grid;
+// rebuilding allocates nothing.
+
+#include <cstdint>
+#include <memory>
+
+#include "stereoscout/core/geometry.hpp"
+#include "stereoscout/explore/grid_view.hpp"
+
+namespace stereoscout::explore {
+
+enum class Traversability : std::uint8_t {
+  lethal = 0,    // the robot's disc would touch an occupied cell, or unknown too far from the robot
+  inflated = 1,  // passable, but within the safety margin of an obstacle (expensive; never a goal)
+  safe = 2,
+};
+
+struct CellBox {
+  int x0 = 0;  // inclusive
+  int y0 = 0;
+  int x1 = 0;  // exclusive
+  int y1 = 0;
+  bool contains(int x, int y) const { return x >= x0 && y >= y0 && x < x1 && y < y1; }
+};
+
+class NavigationMap {
+ public:
+  explicit NavigationMap(const ExploreParams& params);
+
+  // Rebuilds everything for `grid`. Unknown cells are passable only within
+  // unknown_travel_radius_m of `robot` or of `extra_unknown_centre` (the start pose when
+  // returning there). Returns false (and leaves an empty map) if the grid is larger than the
+  // buffers.
+  bool rebuild(const GridView& grid, const Eigen::Vector2d& robot, const Eigen::Vector2d& extra_unknown_centre);
+
+  const GridView& grid() const { return grid_; }
+  const CellBox& window() const { return window_; }
+  std::size_t index(int x, int y) const { return grid_.index(x, y); }
+
+  // Distances in metres between cell centres (a large value when there is none in the window).
+  double occupied_distance_m(int x, int y) const;
+  double unknown_distance_m(int x, int y) const;
+  Traversability traversability(int x, int y) const;
+  bool passable(int x, int y) const;
+  // Cost of moving between two 8-neighbours (metres times the obstacle and unknown penalties
+  // of the cell entered); requires passable(to).
+  double step_cost(int from_x, int from_y, int to_x, int to_y) const;
+
+  // Flood fill (8-connected, over passable cells) from `start`; the start cell counts even if
+  // it is not passable (the robot stands there).
+  void compute_reachable(const Eigen::Vector2i& start);
+  bool reachable(int x, int y) const;
+
+ private:
+  void find_window(const Eigen::Vector2d& robot, const Eigen::Vector2d& extra);
+  void distance_transform(std::int32_t* sites, bool (*is_site)(CellState));
+  void classify(const Eigen::Vector2d& robot, const Eigen::Vector2d& extra);
+  double site_distance_m(const std::int32_t* sites, int x, int y) const;
+
+  ExploreParams params_;
+  std::size_t capacity_ = 0;
+  GridView grid_;
+  CellBox window_;
+  std::unique_ptr<std::int32_t[]> occupied_site_;
+  std::unique_ptr<std::int32_t[]> unknown_site_;
+  std::unique_ptr<std::uint8_t[]> traversability_;
+  std::unique_ptr<float[]> penalty_;  // cost multiplier of entering the cell
+  std::unique_ptr<std::uint32_t[]> reached_stamp_;
+  std::unique_ptr<std::int32_t[]> queue_;
+  std::uint32_t reach_stamp_ = 0;
+};
+
+}  // namespace stereoscout::explore

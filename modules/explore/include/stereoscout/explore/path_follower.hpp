@@ -1,0 +1,36 @@
+#pragma once
+// Pure-pursuit path following within the robot's limits (paper: 0.12 m/s, 8 deg/s). The
+// follower steers to the point lookahead_m ahead along the path; when that point is more
+// than turn_in_place_deg off the heading it turns in place (A* paths have 45-degree corners
+// and a 0.12 m/s robot turning at 8 deg/s cannot bend tighter than 0.86 m, so cutting a
+// corner at speed would leave the planned corridor). When the curvature needs more than
+// the turn-rate limit, the speed drops so that the arc is kept.
+
+#include <cstddef>
+
+#include "stereoscout/core/geometry.hpp"
+#include "stereoscout/core/messages.hpp"
+#include "stereoscout/explore/grid_view.hpp"
+#include "stereoscout/explore/path_planner.hpp"
+
+namespace stereoscout::explore {
+
+struct FollowResult {
+  core::DriveCommand command;
+  bool reached = false;         // within goal_tolerance_m of the last waypoint
+  std::size_t progress = 0;     // index of the waypoint the robot is nearest to
+};
+
+class PathFollower {
+ public:
+  explicit PathFollower(const ExploreParams& params) : params_(params) {}
+  void reset() { progress_ = 0; }
+  FollowResult follow(const Plan& plan, const core::Pose2& pose);
+  std::size_t progress() const { return progress_; }
+
+ private:
+  ExploreParams params_;
+  std::size_t progress_ = 0;
+};
+
+}  // namespace stereoscout::explore

@@ -1,0 +1,66 @@
+#pragma once
+// A* on the navigation map (paper VI): 8-connected, passable cells only (the grid inflated by
+// the robot radius), step cost = length x (1 + obstacle penalty + unknown penalty) of the cell
+// entered, octile-distance heuristic (admissible and consistent because every penalty factor
+// is at least 1), so the path found is a cheapest one. The open list is an indexed binary heap
+// and the closed set a per-cell stamp, both sized for the whole grid at start-up: planning
+// allocates nothing. Ties are broken by cell index, so plans are deterministic.
+
+#include <cstdint>
+#include <memory>
+
+#include "stereoscout/core/fixed_vector.hpp"
+#include "stereoscout/explore/navigation_map.hpp"
+
+namespace stereoscout::explore {
+
+// A path in the map frame: cell centres from the start cell to the goal cell.
+struct Plan {
+  explicit Plan(std::size_t capacity) : cells(capacity), waypoints(capacity) {}
+  void clear() {
+    cells.clear();
+    waypoints.clear();
+    cost = 0.0;
+  }
+  bool empty() const { return waypoints.empty(); }
+  core::FixedVector<Eigen::Vector2i> cells;
+  core::FixedVector<Eigen::Vector2d> waypoints;
+  double cost = 0.0;  // sum of step costs (metres, penalised)
+};
+
+enum class PlanResult : std::uint8_t { found, start_outside, goal_blocked, no_path, plan_full };
+const char* to_string(PlanResult result);
+
+class PathPlanner {
+ public:
+  explicit PathPlanner(const ExploreParams& params);
+
+  // Plans from `start` (the robot's cell; it may itself be non-passable) to `goal`.
+  PlanResult plan(const NavigationMap& map, const Eigen::Vector2i& start, const Eigen::Vector2i& goal, Plan& plan);
+  std::uint64_t expansions() const { return expansions_; }  // cells closed, all plans
+
+ private:
+  void push_or_decrease(std::int32_t cell, float cost);
+  std::int32_t pop();
+  bool before(std::int32_t a, std::int32_t b) const;
+  void sift_up(std::size_t position);
+  void sift_down(std::size_t position);
+  float heuristic(std::int32_t cell) const;
+
+  std::size_t capacity_;
+  int width_ = 0;
+  double resolution_m_ = 0.1;
+  Eigen::Vector2i goal_ = Eigen::Vector2i::Zero();
+  std::unique_ptr<float[]> cost_;            // g
+  std::unique_ptr<float[]> estimate_;        // f = g + h
+  std::unique_ptr<std::int32_t[]> parent_;
+  std::unique_ptr<std::int32_t[]> heap_position_;  // -1 when not in the heap (valid if stamped)
+  std::unique_ptr<std::uint32_t[]> seen_stamp_;
+  std::unique_ptr<std::uint32_t[]> closed_stamp_;
+  std::unique_ptr<std::int32_t[]> heap_;
+  std::size_t heap_size_ = 0;
+  std::uint32_t stamp_ = 0;
+  std::uint64_t expansions_ = 0;
+};
+
+}  // namespace stereoscout::explore

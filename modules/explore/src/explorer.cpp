@@ -1,0 +1,267 @@
+#include "stereoscout/explore/explorer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace stereoscout::explore {
+namespace {
+
+// The pan unit turns the shortest way to its target, so four quarter turns make one full
+// counter-clockwise look that ends facing forward.
+constexpr double kLookTargets_deg[] = {90.0, 180.0, -90.0, 0.0};
+constexpr int kLookSteps = 4;
+constexpr double kPanReached_rad = 0.02;
+// Progress towards a goal counts when the distance shrinks by at least this much.
+constexpr double kProgressStep_m = 0.1;
+// The point ahead of the robot checked before moving forward.
+constexpr double kAheadCheck_m = 0.15;
+// Goals tried per tick when planning to the best ones fails.
+constexpr int kGoalAttemptsPerTick = 4;
+
+Eigen::Vector2d position_of(const core::Pose2& pose) { return {pose.x, pose.y}; }
+
+}  // namespace
+
+const char* to_string(ExploreState state) {
+  switch (state) {
+    case ExploreState::look_around: return "look_around";
+    case ExploreState::choose_goal: return "choose_goal";
+    case ExploreState::drive: return "drive";
+    case ExploreState::returning: return "returning";
+    case ExploreState::finished: return "finished";
+  }
+  return "?";
+}
+
+Explorer::Explorer(const ExploreParams& params)
+    : params_(params),
+      map_(params),
+      goal_value_(params),
+      memory_(static_cast<std::size_t>(params.explore.goal_memory), params.explore.visited_goal_radius_m,
+              params.explore.goal_failures_before_blacklist),
+      planner_(params),
+      follower_(params),
+      plan_(static_cast<std::size_t>(params.explore.max_plan_waypoints)) {}
+
+Eigen::Vector2i Explorer::cell_of(const core::Pose2& pose) const { return map_.grid().cell_of(position_of(pose)); }
+
+ExploreOutput Explorer::step(const ExploreInput& input) {
+  if (!started_) start(input);
+  ExploreOutput output;
+  if (input.emergency_stop) {
+    // Halt within this very tick: zero velocity, pan held where it is; the state is kept so
+    // that exploration resumes when the stop is released.
+    ++counters_.emergency_stop_ticks;
+    output.pan_target_rad = input.pan_rad;
+    output.state = state_;
+    rebuild_needed_ = rebuild_needed_ || input.grid_updated;
+    return output;
+  }
+  if (input.grid_updated || rebuild_needed_) rebuild(input);
+  const bool exploring = state_ == ExploreState::look_around || state_ == ExploreState::choose_goal ||
+                         state_ == ExploreState::drive;
+  if (exploring && input.time_s - start_time_s_ >= params_.explore.time_limit_s) {
+    finish_exploring(input, FinishReason::time_limit);
+  }
+  // In this order so that a finished look chooses a goal and starts driving in the same tick.
+  if (state_ == ExploreState::look_around) look_step(input, output);
+  if (state_ == ExploreState::choose_goal) choose_goal(input);
+  if (state_ == ExploreState::drive || state_ == ExploreState::returning) drive_step(input, output);
+  output.pan_target_rad = pan_target_rad_;
+  output.state = state_;
+  return output;
+}
+
+void Explorer::start(const ExploreInput& input) {
+  started_ = true;
+  start_pose_ = input.pose;
+  start_time_s_ = input.time_s;
+  rebuild_needed_ = true;
+  if (params_.explore.pan_at_goal) {
+    begin_look(input);
+  } else {
+    state_ = ExploreState::choose_goal;
+  }
+}
+
+void Explorer::rebuild(const ExploreInput& input) {
+  rebuild_needed_ = false;
+  const Eigen::Vector2d extra =
+      state_ == ExploreState::returning ? position_of(start_pose_) : position_of(input.pose);
+  map_.rebuild(input.grid, position_of(input.pose), extra);
+  ++counters_.map_rebuilds;
+  if (state_ == ExploreState::drive || state_ == ExploreState::returning) check_plan(input);
+}
+
+// After every observation update: is the rest of the plan still passable? Is the goal still
+// worth going to (it may have been seen on the way)?
+void Explorer::check_plan(const ExploreInput& input) {
+  if (state_ == ExploreState::drive &&
+      goal_value_.value(map_.grid(), goal_.cell.x(), goal_.cell.y()) <= params_.explore.min_goal_value) {
+    ++counters_.goals_abandoned;
+    plan_.clear();
+    state_ = ExploreState::choose_goal;
+    return;
+  }
+  for (std::size_t k = follower_.progress() + 1; k < plan_.cells.size(); ++k) {
+    if (!map_.passable(plan_.cells[k].x(), plan_.cells[k].y())) {
+      ++counters_.replans;
+      if (!replan(input)) goal_failed();
+      return;
+    }
+  }
+}
+
+bool Explorer::replan(const ExploreInput& input) {
+  follower_.reset();
+  if (planner_.plan(map_, cell_of(input.pose), goal_.cell, plan_) == PlanResult::found) return true;
+  ++counters_.plan_failures;
+  return false;
+}
+
+void Explorer::choose_goal(const ExploreInput& input) {
+  map_.compute_reachable(cell_of(input.pose));
+  for (int attempt = 0; attempt < kGoalAttemptsPerTick; ++attempt) {
+    const Goal goal = goal_value_.select(map_, memory_);
+    if (!goal.valid || goal.value <= params_.explore.min_goal_value) {
+      finish_exploring(input, FinishReason::explored);
+      return;
+    }
+    ++counters_.goals_chosen;
+    goal_ = goal;
+    if (replan(input)) {
+      state_ = ExploreState::drive;
+      best_goal_distance_m_ = std::numeric_limits<double>::infinity();
+      last_progress_time_s_ = input.time_s;
+      return;
+    }
+    goal_failed();
+  }
+}
+
+void Explorer::finish_exploring(const ExploreInput& input, FinishReason reason) {
+  finish_reason_ = reason;
+  plan_.clear();
+  pan_target_rad_ = 0.0;
+  if (!params_.explore.return_to_start) {
+    state_ = ExploreState::finished;
+    return;
+  }
+  state_ = ExploreState::returning;
+  rebuild(input);  // unknown cells near the start become passable
+  goal_ = Goal{};
+  goal_.valid = true;
+  goal_.position = position_of(start_pose_);
+  goal_.cell = map_.grid().cell_of(goal_.position);
+  best_goal_distance_m_ = std::numeric_limits<double>::infinity();
+  last_progress_time_s_ = input.time_s;
+  if (!replan(input)) goal_failed();
+}
+
+void Explorer::goal_failed() {
+  plan_.clear();
+  if (state_ == ExploreState::returning) {
+    ++counters_.return_failures;
+    state_ = ExploreState::finished;
+    return;
+  }
+  ++counters_.goal_failures;
+  if (memory_.record_failure(goal_.position)) counters_.goals_blacklisted = memory_.blacklisted();
+  state_ = ExploreState::choose_goal;
+}
+
+void Explorer::begin_look(const ExploreInput& input) {
+  ++counters_.looks;
+  state_ = ExploreState::look_around;
+  look_step_ = 0;
+  look_turned_rad_ = 0.0;
+  look_last_heading_ = input.pose.theta;
+}
+
+void Explorer::look_step(const ExploreInput& input, ExploreOutput& output) {
+  if (params_.has_pan_unit) {
+    pan_target_rad_ = core::degrees_to_radians(kLookTargets_deg[look_step_]);
+    if (std::abs(core::wrap_angle(input.pan_rad - pan_target_rad_)) < kPanReached_rad) ++look_step_;
+    if (look_step_ == kLookSteps) {
+      pan_target_rad_ = 0.0;
+      state_ = ExploreState::choose_goal;
+      return;
+    }
+    pan_target_rad_ = core::degrees_to_radians(kLookTargets_deg[look_step_]);
+    return;
+  }
+  look_turned_rad_ += core::wrap_angle(input.pose.theta - look_last_heading_);
+  look_last_heading_ = input.pose.theta;
+  if (look_turned_rad_ >= 2.0 * core::kPi) {
+    state_ = ExploreState::choose_goal;
+    return;
+  }
+  output.drive.angular_rad_s = params_.max_turn_rate_rad_s;
+}
+
+void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
+  const FollowResult follow = follower_.follow(plan_, input.pose);
+  if (follow.reached) {
+    plan_.clear();
+    if (state_ == ExploreState::returning) {
+      state_ = ExploreState::finished;
+      return;
+    }
+    ++counters_.goals_reached;
+    memory_.record_visit(goal_.position);
+    if (params_.explore.pan_at_goal) {
+      begin_look(input);
+    } else {
+      state_ = ExploreState::choose_goal;
+    }
+    return;
+  }
+  const double distance = (position_of(input.pose) - goal_.position).norm();
+  if (distance < best_goal_distance_m_ - kProgressStep_m) {
+    best_goal_distance_m_ = distance;
+    last_progress_time_s_ = input.time_s;
+  } else if (input.time_s - last_progress_time_s_ > params_.explore.stuck_timeout_s) {
+    ++counters_.stuck;
+    goal_failed();
+    return;
+  }
+  if (follow.command.linear_mps > 0.0 && !stretch_is_clear(input.grid, input.pose)) {
+    ++counters_.safety_stops;
+    rebuild_needed_ = true;  // the next tick rebuilds the map from this grid and replans
+    return;
+  }
+  output.drive = follow.command;
+}
+
+bool Explorer::disc_is_clear(const GridView& grid, const Eigen::Vector2d& centre, const Eigen::Vector2d& robot) const {
+  const double radius = params_.robot_radius_m;
+  const int reach = static_cast<int>(std::ceil(radius / grid.resolution_m)) + 1;
+  const Eigen::Vector2i middle = grid.cell_of(centre);
+  for (int y = middle.y() - reach; y <= middle.y() + reach; ++y) {
+    for (int x = middle.x() - reach; x <= middle.x() + reach; ++x) {
+      if (!grid.contains(x, y) || grid.at(x, y) != CellState::occupied) continue;
+      const Eigen::Vector2d cell = grid.center(x, y);
+      // Cells the disc already overlaps where it stands are not "moving into" them.
+      if ((cell - centre).norm() < radius && (cell - robot).norm() >= radius) return false;
+    }
+  }
+  return true;
+}
+
+bool Explorer::stretch_is_clear(const GridView& grid, const core::Pose2& pose) const {
+  const Eigen::Vector2d robot = position_of(pose);
+  const Eigen::Vector2d ahead = robot + kAheadCheck_m * Eigen::Vector2d(std::cos(pose.theta), std::sin(pose.theta));
+  if (!disc_is_clear(grid, ahead, robot)) return false;
+  double travelled = 0.0;
+  Eigen::Vector2d previous = robot;
+  for (std::size_t k = follower_.progress(); k < plan_.waypoints.size(); ++k) {
+    travelled += (plan_.waypoints[k] - previous).norm();
+    previous = plan_.waypoints[k];
+    if (travelled > params_.explore.safety_check_distance_m) break;
+    if (!disc_is_clear(grid, plan_.waypoints[k], robot)) return false;
+  }
+  return true;
+}
+
+}  // namespace stereoscout::explore

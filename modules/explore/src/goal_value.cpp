@@ -1,0 +1,139 @@
+#include "stereoscout/explore/goal_value.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "stereoscout/core/geometry.hpp"
+
+namespace stereoscout::explore {
+
+GoalMemory::GoalMemory(std::size_t capacity, double radius_m, int failures_before_blacklist)
+    : entries_(capacity), radius2_(radius_m * radius_m), failures_before_blacklist_(failures_before_blacklist) {}
+
+GoalMemory::Entry* GoalMemory::find(const Eigen::Vector2d& position) {
+  for (Entry& entry : entries_) {
+    if ((entry.position - position).squaredNorm() <= radius2_) return &entry;
+  }
+  return nullptr;
+}
+
+bool GoalMemory::record_failure(const Eigen::Vector2d& position) {
+  Entry* entry = find(position);
+  if (entry == nullptr) {
+    entry = entries_.emplace_back(Entry{position, 0});
+    if (entry == nullptr) {
+      ++forgotten_;
+      return false;
+    }
+  }
+  if (entry->failures >= failures_before_blacklist_) return true;
+  if (++entry->failures < failures_before_blacklist_) return false;
+  ++blacklisted_;
+  return true;
+}
+
+void GoalMemory::record_visit(const Eigen::Vector2d& position) {
+  Entry* entry = find(position);
+  if (entry == nullptr) entry = entries_.emplace_back(Entry{position, 0});
+  if (entry == nullptr) {
+    ++forgotten_;
+    return;
+  }
+  entry->failures = std::max(entry->failures, failures_before_blacklist_);
+}
+
+bool GoalMemory::excluded(const Eigen::Vector2d& position) const {
+  for (const Entry& entry : entries_) {
+    if (entry.failures >= failures_before_blacklist_ && (entry.position - position).squaredNorm() <= radius2_) {
+      return true;
+    }
+  }
+  return false;
+}
+
+GoalValue::GoalValue(const ExploreParams& params)
+    : params_(params),
+      directions_(static_cast<std::size_t>(std::max(1L, std::lround(360.0 / params.explore.ray_step_deg)))) {
+  const double step = core::degrees_to_radians(params.explore.ray_step_deg);
+  for (std::size_t k = 0; k < directions_.capacity(); ++k) {
+    const double theta = step * static_cast<double>(k);
+    directions_.push_back(Eigen::Vector2d(std::cos(theta), std::sin(theta)));
+  }
+}
+
+// Marches from the centre of s in steps of a quarter cell so that no cell the ray crosses
+// is skipped; |s' - s| is the distance between the two cell centres.
+double GoalValue::ray_value(const GridView& grid, int x, int y, std::size_t ray_index) const {
+  const Eigen::Vector2d& direction = directions_[ray_index];
+  const double step_cells = 0.25;
+  const double cap_cells = params_.ray_cap_m() / grid.resolution_m;
+  const double start_x = x + 0.5;
+  const double start_y = y + 0.5;
+  int last_x = x;
+  int last_y = y;
+  for (double t = step_cells; t <= cap_cells; t += step_cells) {
+    const int cx = static_cast<int>(std::floor(start_x + t * direction.x()));
+    const int cy = static_cast<int>(std::floor(start_y + t * direction.y()));
+    if (cx == last_x && cy == last_y) continue;
+    last_x = cx;
+    last_y = cy;
+    if (!grid.contains(cx, cy)) return 0.0;
+    const CellState state = grid.at(cx, cy);
+    if (state == CellState::free) continue;
+    if (state == CellState::occupied) return 0.0;
+    const double dx = cx - x;
+    const double dy = cy - y;
+    const double distance_m = grid.resolution_m * std::sqrt(dx * dx + dy * dy);
+    const double error = (distance_m - params_.explore.preferred_distance_m) / params_.explore.distance_sigma_m;
+    return std::exp(-0.5 * error * error);
+  }
+  return 0.0;
+}
+
+double GoalValue::value(const GridView& grid, int x, int y) const {
+  ++values_computed_;
+  double sum = 0.0;
+  for (std::size_t k = 0; k < directions_.size(); ++k) sum += ray_value(grid, x, y, k);
+  return sum;
+}
+
+bool GoalValue::is_candidate(const NavigationMap& map, const GoalMemory& memory, int x, int y) const {
+  const GridView& grid = map.grid();
+  return grid.contains(x, y) && grid.at(x, y) == CellState::free &&
+         map.traversability(x, y) == Traversability::safe && map.reachable(x, y) &&
+         map.unknown_distance_m(x, y) <= params_.ray_cap_m() && !memory.excluded(grid.center(x, y));
+}
+
+Goal GoalValue::select(const NavigationMap& map, const GoalMemory& memory) const {
+  const GridView& grid = map.grid();
+  const CellBox& box = map.window();
+  const int stride = params_.explore.candidate_stride_cells;
+  Goal best;
+  auto consider = [&](int x, int y) {
+    if (!is_candidate(map, memory, x, y)) return;
+    const double h = value(grid, x, y);
+    if (h > best.value) {
+      best.valid = true;
+      best.value = h;
+      best.cell = Eigen::Vector2i(x, y);
+    }
+  };
+  // Lattice aligned to the grid (not the window) so that candidates do not move as it grows.
+  const int first_x = (box.x0 + stride - 1) / stride * stride;
+  const int first_y = (box.y0 + stride - 1) / stride * stride;
+  for (int y = first_y; y < box.y1; y += stride) {
+    for (int x = first_x; x < box.x1; x += stride) consider(x, y);
+  }
+  if (!best.valid) return best;
+  const Eigen::Vector2i lattice_best = best.cell;
+  const int half = stride / 2;
+  for (int y = lattice_best.y() - half; y <= lattice_best.y() + half; ++y) {
+    for (int x = lattice_best.x() - half; x <= lattice_best.x() + half; ++x) {
+      if (x != lattice_best.x() || y != lattice_best.y()) consider(x, y);
+    }
+  }
+  best.position = grid.center(best.cell.x(), best.cell.y());
+  return best;
+}
+
+}  // namespace stereoscout::explore

@@ -1,0 +1,207 @@
+#include "stereoscout/explore/navigation_map.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace stereoscout::explore {
+namespace {
+
+constexpr double kNoSiteDistance_m = 1e9;
+constexpr double kDiagonal = 1.4142135623730951;
+
+bool is_occupied(CellState state) { return state == CellState::occupied; }
+bool is_unknown(CellState state) { return state == CellState::unknown; }
+
+int cells_for(double metres, double resolution_m) { return static_cast<int>(std::ceil(metres / resolution_m)) + 1; }
+
+}  // namespace
+
+NavigationMap::NavigationMap(const ExploreParams& params)
+    : params_(params),
+      capacity_(static_cast<std::size_t>(params.max_width) * static_cast<std::size_t>(params.max_height)),
+      occupied_site_(new std::int32_t[capacity_]),
+      unknown_site_(new std::int32_t[capacity_]),
+      traversability_(new std::uint8_t[capacity_]),
+      penalty_(new float[capacity_]),
+      reached_stamp_(new std::uint32_t[capacity_]()),
+      queue_(new std::int32_t[capacity_]) {}
+
+bool NavigationMap::rebuild(const GridView& grid, const Eigen::Vector2d& robot, const Eigen::Vector2d& extra) {
+  grid_ = grid;
+  window_ = CellBox{};
+  ++reach_stamp_;  // forget the previous flood fill
+  if (grid.cells == nullptr || grid.width <= 0 || grid.height <= 0 ||
+      static_cast<std::size_t>(grid.width) * static_cast<std::size_t>(grid.height) > capacity_) {
+    grid_.width = 0;
+    grid_.height = 0;
+    return false;
+  }
+  find_window(robot, extra);
+  distance_transform(occupied_site_.get(), &is_occupied);
+  distance_transform(unknown_site_.get(), &is_unknown);
+  classify(robot, extra);
+  return true;
+}
+
+// The bounding box of the known cells and of the places where unknown cells may be crossed,
+// grown by the ray cap so that every known cell sees its nearest unknown cell in the window.
+void NavigationMap::find_window(const Eigen::Vector2d& robot, const Eigen::Vector2d& extra) {
+  int x0 = grid_.width;
+  int y0 = grid_.height;
+  int x1 = -1;
+  int y1 = -1;
+  for (int y = 0; y < grid_.height; ++y) {
+    const std::uint8_t* row = grid_.cells + grid_.index(0, y);
+    int first = -1;
+    int last = -1;
+    for (int x = 0; x < grid_.width; ++x) {
+      if (row[x] != static_cast<std::uint8_t>(CellState::unknown)) {
+        if (first < 0) first = x;
+        last = x;
+      }
+    }
+    if (first < 0) continue;
+    x0 = std::min(x0, first);
+    x1 = std::max(x1, last);
+    y0 = std::min(y0, y);
+    y1 = std::max(y1, y);
+  }
+  const int travel = cells_for(params_.explore.unknown_travel_radius_m, grid_.resolution_m);
+  for (const Eigen::Vector2d& centre : {robot, extra}) {
+    const Eigen::Vector2i cell = grid_.cell_of(centre);
+    x0 = std::min(x0, cell.x() - travel);
+    x1 = std::max(x1, cell.x() + travel);
+    y0 = std::min(y0, cell.y() - travel);
+    y1 = std::max(y1, cell.y() + travel);
+  }
+  const int grow = cells_for(std::max(params_.ray_cap_m(), params_.explore.preferred_clearance_m), grid_.resolution_m);
+  window_.x0 = std::max(0, x0 - grow);
+  window_.y0 = std::max(0, y0 - grow);
+  window_.x1 = std::min(grid_.width, x1 + grow + 1);
+  window_.y1 = std::min(grid_.height, y1 + grow + 1);
+  if (window_.x1 < window_.x0) window_.x1 = window_.x0;
+  if (window_.y1 < window_.y0) window_.y1 = window_.y0;
+}
+
+double NavigationMap::site_distance_m(const std::int32_t* sites, int x, int y) const {
+  if (!window_.contains(x, y)) return kNoSiteDistance_m;
+  const std::int32_t site = sites[index(x, y)];
+  if (site < 0) return kNoSiteDistance_m;
+  const int dx = site % grid_.width - x;
+  const int dy = site / grid_.width - y;
+  return grid_.resolution_m * std::sqrt(static_cast<double>(dx * dx + dy * dy));
+}
+
+// Two-pass nearest-site propagation (8SSEDT): each cell takes the nearest site of the
+// neighbours already visited; exact up to rare sub-cell ties, which is all a 10 cm grid needs.
+void NavigationMap::distance_transform(std::int32_t* sites, bool (*is_site)(CellState)) {
+  const int width = grid_.width;
+  auto distance2 = [width](std::int32_t site, int x, int y) {
+    const long dx = site % width - x;
+    const long dy = site / width - y;
+    return dx * dx + dy * dy;
+  };
+  auto relax = [&](int x, int y, int nx, int ny) {
+    if (!window_.contains(nx, ny)) return;
+    const std::int32_t candidate = sites[index(nx, ny)];
+    if (candidate < 0) return;
+    std::int32_t& own = sites[index(x, y)];
+    if (own < 0 || distance2(candidate, x, y) < distance2(own, x, y)) own = candidate;
+  };
+  for (int y = window_.y0; y < window_.y1; ++y) {
+    for (int x = window_.x0; x < window_.x1; ++x) {
+      sites[index(x, y)] = is_site(grid_.at(x, y)) ? static_cast<std::int32_t>(index(x, y)) : -1;
+    }
+  }
+  for (int y = window_.y0; y < window_.y1; ++y) {
+    for (int x = window_.x0; x < window_.x1; ++x) {
+      relax(x, y, x - 1, y);
+      relax(x, y, x - 1, y - 1);
+      relax(x, y, x, y - 1);
+      relax(x, y, x + 1, y - 1);
+    }
+    for (int x = window_.x1 - 1; x >= window_.x0; --x) relax(x, y, x + 1, y);
+  }
+  for (int y = window_.y1 - 1; y >= window_.y0; --y) {
+    for (int x = window_.x1 - 1; x >= window_.x0; --x) {
+      relax(x, y, x + 1, y);
+      relax(x, y, x + 1, y + 1);
+      relax(x, y, x, y + 1);
+      relax(x, y, x - 1, y + 1);
+    }
+    for (int x = window_.x0; x < window_.x1; ++x) relax(x, y, x - 1, y);
+  }
+}
+
+void NavigationMap::classify(const Eigen::Vector2d& robot, const Eigen::Vector2d& extra) {
+  const double lethal = params_.lethal_distance_m(grid_.resolution_m);
+  const double safe = params_.safe_distance_m(grid_.resolution_m);
+  const double preferred = std::max(params_.explore.preferred_clearance_m, lethal + 1e-6);
+  const double travel2 = params_.explore.unknown_travel_radius_m * params_.explore.unknown_travel_radius_m;
+  for (int y = window_.y0; y < window_.y1; ++y) {
+    for (int x = window_.x0; x < window_.x1; ++x) {
+      const std::size_t i = index(x, y);
+      const CellState state = grid_.at(x, y);
+      const double clearance = occupied_distance_m(x, y);
+      const Eigen::Vector2d centre = grid_.center(x, y);
+      const bool unknown_allowed = (centre - robot).squaredNorm() <= travel2 || (centre - extra).squaredNorm() <= travel2;
+      Traversability kind = Traversability::safe;
+      if (state == CellState::occupied || clearance < lethal || (state == CellState::unknown && !unknown_allowed)) {
+        kind = Traversability::lethal;
+      } else if (clearance < safe) {
+        kind = Traversability::inflated;
+      }
+      traversability_[i] = static_cast<std::uint8_t>(kind);
+      const double closeness = std::clamp((preferred - clearance) / (preferred - lethal), 0.0, 1.0);
+      const double unknown_cost = state == CellState::unknown ? params_.explore.unknown_cell_cost : 0.0;
+      penalty_[i] = static_cast<float>(1.0 + params_.explore.obstacle_cost_weight * closeness + unknown_cost);
+    }
+  }
+}
+
+double NavigationMap::occupied_distance_m(int x, int y) const { return site_distance_m(occupied_site_.get(), x, y); }
+double NavigationMap::unknown_distance_m(int x, int y) const { return site_distance_m(unknown_site_.get(), x, y); }
+
+Traversability NavigationMap::traversability(int x, int y) const {
+  if (!window_.contains(x, y)) return Traversability::lethal;
+  return static_cast<Traversability>(traversability_[index(x, y)]);
+}
+
+bool NavigationMap::passable(int x, int y) const { return traversability(x, y) != Traversability::lethal; }
+
+double NavigationMap::step_cost(int from_x, int from_y, int to_x, int to_y) const {
+  const bool diagonal = from_x != to_x && from_y != to_y;
+  const double length = grid_.resolution_m * (diagonal ? kDiagonal : 1.0);
+  return length * static_cast<double>(penalty_[index(to_x, to_y)]);
+}
+
+void NavigationMap::compute_reachable(const Eigen::Vector2i& start) {
+  ++reach_stamp_;
+  if (!window_.contains(start.x(), start.y())) return;
+  std::size_t head = 0;
+  std::size_t tail = 0;
+  const auto start_index = static_cast<std::int32_t>(index(start.x(), start.y()));
+  reached_stamp_[static_cast<std::size_t>(start_index)] = reach_stamp_;
+  queue_[tail++] = start_index;
+  while (head < tail) {
+    const std::int32_t cell = queue_[head++];
+    const int x = cell % grid_.width;
+    const int y = cell / grid_.width;
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dx = -1; dx <= 1; ++dx) {
+        if ((dx == 0 && dy == 0) || !passable(x + dx, y + dy)) continue;
+        const std::size_t next = index(x + dx, y + dy);
+        if (reached_stamp_[next] == reach_stamp_) continue;
+        reached_stamp_[next] = reach_stamp_;
+        queue_[tail++] = static_cast<std::int32_t>(next);
+      }
+    }
+  }
+}
+
+bool NavigationMap::reachable(int x, int y) const {
+  return window_.contains(x, y) && reached_stamp_[index(x, y)] == reach_stamp_;
+}
+
+}  // namespace stereoscout::explore

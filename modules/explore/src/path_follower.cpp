@@ -1,0 +1,58 @@
+#include "stereoscout/explore/path_follower.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace stereoscout::explore {
+namespace {
+// The nearest waypoint is searched this many waypoints ahead of the last one (progress only
+// moves forward, so a path that doubles back is not short-cut).
+constexpr std::size_t kProgressWindow = 12;
+// Gain of the in-place turn (rad/s per rad), limited by the turn rate.
+constexpr double kTurnGain = 2.0;
+}  // namespace
+
+FollowResult PathFollower::follow(const Plan& plan, const core::Pose2& pose) {
+  FollowResult result;
+  if (plan.empty()) {
+    result.reached = true;
+    return result;
+  }
+  const Eigen::Vector2d position(pose.x, pose.y);
+  const std::size_t count = plan.waypoints.size();
+  progress_ = std::min(progress_, count - 1);
+  std::size_t nearest = progress_;
+  double nearest_distance = (plan.waypoints[progress_] - position).norm();
+  for (std::size_t k = progress_ + 1; k < std::min(count, progress_ + kProgressWindow); ++k) {
+    const double distance = (plan.waypoints[k] - position).norm();
+    if (distance < nearest_distance) {
+      nearest = k;
+      nearest_distance = distance;
+    }
+  }
+  progress_ = nearest;
+  result.progress = progress_;
+  if ((plan.waypoints[count - 1] - position).norm() <= params_.explore.goal_tolerance_m) {
+    result.reached = true;
+    return result;
+  }
+  std::size_t target = progress_;
+  while (target + 1 < count && (plan.waypoints[target] - position).norm() < params_.explore.lookahead_m) ++target;
+  const Eigen::Vector2d to_target = plan.waypoints[target] - position;
+  const double alpha = core::wrap_angle(std::atan2(to_target.y(), to_target.x()) - pose.theta);
+  const double max_turn = params_.max_turn_rate_rad_s;
+  if (std::abs(alpha) > core::degrees_to_radians(params_.explore.turn_in_place_deg)) {
+    result.command.angular_rad_s = std::clamp(kTurnGain * alpha, -max_turn, max_turn);
+    return result;
+  }
+  // Pure pursuit: the arc through the target point has curvature 2 sin(alpha) / L.
+  const double length = std::max(to_target.norm(), 1e-3);
+  const double curvature = 2.0 * std::sin(alpha) / length;
+  double speed = params_.max_speed_mps;
+  if (std::abs(curvature) * speed > max_turn) speed = max_turn / std::abs(curvature);
+  result.command.linear_mps = speed;
+  result.command.angular_rad_s = std::clamp(speed * curvature, -max_turn, max_turn);
+  return result;
+}
+
+}  // namespace stereoscout::explore

@@ -1,0 +1,227 @@
+// The exploration behaviour on hand-made grids: replanning, blacklisting, safety stops,
+// the emergency stop, the look around, termination, and no allocation in step().
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "stereoscout/core/allocation_counter.hpp"
+#include "stereoscout/explore/explorer.hpp"
+#include "test_grid.hpp"
+
+namespace stereoscout::explore {
+namespace {
+
+using testing::TestGrid;
+using testing::test_params;
+
+// A 10 x 6 m known room with an unknown region beyond x = 8 m: the goal lies towards it.
+struct Corridor {
+  TestGrid grid{100, 60, CellState::free};
+  Corridor() {
+    grid.walls();
+    grid.fill(80, 1, 99, 59, CellState::unknown);
+  }
+};
+
+ExploreInput input_at(const GridView& grid, double x, double y, double theta, double time_s, bool updated) {
+  ExploreInput input;
+  input.time_s = time_s;
+  input.pose = core::Pose2{x, y, theta};
+  input.grid = grid;
+  input.grid_updated = updated;
+  return input;
+}
+
+ExploreParams no_look_params(int width, int height) {
+  ExploreParams params = test_params(width, height);
+  params.explore.pan_at_goal = false;
+  params.explore.return_to_start = false;
+  return params;
+}
+
+TEST(Explorer, DrivesTowardsTheUnknownWithinTheLimits) {
+  Corridor scene;
+  const ExploreParams params = no_look_params(100, 60);
+  Explorer explorer(params);
+  const ExploreOutput output = explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.0, true));
+  ASSERT_EQ(output.state, ExploreState::drive);
+  ASSERT_TRUE(explorer.goal().valid);
+  EXPECT_GT(explorer.goal().position.x(), 4.0);
+  EXPECT_GT(output.drive.linear_mps, 0.0);
+  EXPECT_LE(output.drive.linear_mps, params.max_speed_mps);
+  EXPECT_LE(std::abs(output.drive.angular_rad_s), params.max_turn_rate_rad_s);
+  EXPECT_EQ(explorer.counters().goals_chosen, 1U);
+}
+
+TEST(Explorer, ReplansWhenAnObstacleAppearsOnThePath) {
+  Corridor scene;
+  Explorer explorer(no_look_params(100, 60));
+  explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.0, true));
+  ASSERT_EQ(explorer.state(), ExploreState::drive);
+  // A wall across the middle of the room with a gap at the top, right over the plan.
+  scene.grid.fill(40, 1, 42, 45, CellState::occupied);
+  bool crossed = false;
+  for (const Eigen::Vector2i& cell : explorer.plan().cells) crossed = crossed || (cell.x() >= 40 && cell.x() < 42);
+  ASSERT_TRUE(crossed);
+  const ExploreOutput output = explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 1.0, true));
+  EXPECT_EQ(explorer.counters().replans, 1U);
+  EXPECT_EQ(output.state, ExploreState::drive);
+  for (const Eigen::Vector2i& cell : explorer.plan().cells) {
+    EXPECT_TRUE(explorer.navigation_map().passable(cell.x(), cell.y()));
+    if (cell.x() >= 40 && cell.x() < 42) {
+      EXPECT_GE(cell.y(), 45 + 4);  // through the gap
+    }
+  }
+}
+
+TEST(Explorer, StopsBeforeAnOccupiedCellAheadEvenBeforeTheMapIsRebuilt) {
+  Corridor scene;
+  Explorer explorer(no_look_params(100, 60));
+  const ExploreOutput first = explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.0, true));
+  ASSERT_GT(first.drive.linear_mps, 0.0);
+  // An obstacle 0.4 m ahead on the plan appears in the grid; no observation update flagged.
+  scene.grid.set(19, 30, CellState::occupied);
+  const ExploreOutput stopped = explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.1, false));
+  EXPECT_EQ(stopped.drive.linear_mps, 0.0);
+  EXPECT_EQ(stopped.drive.angular_rad_s, 0.0);
+  EXPECT_EQ(explorer.counters().safety_stops, 1U);
+  // Next tick: map rebuilt, plan goes around, motion resumes on a clear stretch.
+  explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.2, false));
+  EXPECT_EQ(explorer.counters().replans, 1U);
+  for (const Eigen::Vector2i& cell : explorer.plan().cells) EXPECT_NE(cell, Eigen::Vector2i(19, 30));
+}
+
+TEST(Explorer, EmergencyStopHaltsInTheSameTickAndResumes) {
+  Corridor scene;
+  Explorer explorer(no_look_params(100, 60));
+  ASSERT_GT(explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.0, true)).drive.linear_mps, 0.0);
+  ExploreInput stop = input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.1, false);
+  stop.emergency_stop = true;
+  stop.pan_rad = 0.3;
+  const ExploreOutput halted = explorer.step(stop);
+  EXPECT_EQ(halted.drive.linear_mps, 0.0);
+  EXPECT_EQ(halted.drive.angular_rad_s, 0.0);
+  EXPECT_EQ(halted.pan_target_rad, 0.3);  // the pan unit holds still too
+  EXPECT_EQ(explorer.counters().emergency_stop_ticks, 1U);
+  EXPECT_GT(explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.2, false)).drive.linear_mps, 0.0);
+}
+
+TEST(Explorer, BlacklistsGoalsThatKeepFailingThenFinishes) {
+  Corridor scene;
+  ExploreParams params = no_look_params(100, 60);
+  params.explore.max_plan_waypoints = 3;  // every plan fails: too long for the plan
+  Explorer explorer(params);
+  for (int tick = 0; tick < 200 && explorer.state() != ExploreState::finished; ++tick) {
+    const ExploreOutput output = explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.1 * tick, tick == 0));
+    EXPECT_EQ(output.drive.linear_mps, 0.0);
+  }
+  const ExploreCounters& counters = explorer.counters();
+  EXPECT_EQ(explorer.state(), ExploreState::finished);
+  EXPECT_EQ(explorer.finish_reason(), FinishReason::explored);
+  EXPECT_GT(counters.goals_blacklisted, 0U);
+  EXPECT_EQ(counters.goal_failures, counters.goals_blacklisted * 3U);
+  EXPECT_EQ(counters.plan_failures, counters.goal_failures);
+}
+
+TEST(Explorer, LooksAroundWithThePanUnitInQuarterTurns) {
+  Corridor scene;
+  ExploreParams params = test_params(100, 60);
+  Explorer explorer(params);
+  const double targets[] = {core::kPi / 2, core::kPi, -core::kPi / 2, 0.0};
+  double pan = 0.0;
+  for (double target : targets) {
+    ExploreInput input = input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.0, pan == 0.0);
+    input.pan_rad = pan + 0.5;  // still on its way
+    const ExploreOutput output = explorer.step(input);
+    EXPECT_EQ(output.state, ExploreState::look_around);
+    EXPECT_NEAR(output.pan_target_rad, target, 1e-12);
+    EXPECT_EQ(output.drive.linear_mps, 0.0);
+    EXPECT_EQ(output.drive.angular_rad_s, 0.0);
+    pan = target;
+    ExploreInput reached = input_at(scene.grid.view(), 1.5, 3.0, 0.0, 1.0, false);
+    reached.pan_rad = pan;
+    const ExploreOutput next = explorer.step(reached);
+    // The last quarter turn ends the look: a goal is chosen and driving starts at once.
+    EXPECT_EQ(next.state, target == 0.0 ? ExploreState::drive : ExploreState::look_around);
+  }
+  EXPECT_EQ(explorer.counters().looks, 1U);
+}
+
+TEST(Explorer, TurnsInPlaceAFullCircleWithoutAPanUnit) {
+  Corridor scene;
+  Explorer explorer(test_params(100, 60, /*has_pan_unit=*/false));
+  double heading = 0.0;
+  int ticks = 0;
+  ExploreOutput output = explorer.step(input_at(scene.grid.view(), 1.5, 3.0, heading, 0.0, true));
+  while (output.state == ExploreState::look_around && ticks < 1000) {
+    EXPECT_EQ(output.drive.linear_mps, 0.0);
+    EXPECT_DOUBLE_EQ(output.drive.angular_rad_s, core::degrees_to_radians(8.0));
+    heading = core::wrap_angle(heading + output.drive.angular_rad_s * 0.5);
+    ++ticks;
+    output = explorer.step(input_at(scene.grid.view(), 1.5, 3.0, heading, 0.5 * ticks, false));
+  }
+  EXPECT_EQ(ticks, 90);  // 360 deg at 8 deg/s in 0.5 s ticks
+  EXPECT_EQ(output.state, ExploreState::drive);
+}
+
+TEST(Explorer, FinishesWhenNothingIsLeft) {
+  TestGrid room(60, 60, CellState::free);
+  room.walls();
+  ExploreParams params = test_params(60, 60);
+  params.explore.pan_at_goal = false;
+  Explorer explorer(params);
+  // Nothing unknown: explored at once; the robot is at its start, so the return ends at once.
+  const ExploreOutput output = explorer.step(input_at(room.view(), 3.0, 3.0, 0.0, 0.0, true));
+  EXPECT_EQ(explorer.finish_reason(), FinishReason::explored);
+  EXPECT_EQ(output.state, ExploreState::finished);
+  EXPECT_EQ(explorer.counters().return_failures, 0U);
+}
+
+TEST(Explorer, ReturnsToTheStartAfterTheTimeLimit) {
+  Corridor scene;
+  ExploreParams params = test_params(100, 60);
+  params.explore.pan_at_goal = false;
+  params.explore.time_limit_s = 10.0;
+  Explorer explorer(params);
+  explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.0, true));
+  ASSERT_EQ(explorer.state(), ExploreState::drive);
+  const ExploreOutput output = explorer.step(input_at(scene.grid.view(), 5.0, 3.0, 0.0, 10.0, false));
+  EXPECT_EQ(explorer.finish_reason(), FinishReason::time_limit);
+  EXPECT_EQ(output.state, ExploreState::returning);
+  ASSERT_FALSE(explorer.plan().empty());
+  EXPECT_EQ(explorer.plan().cells[explorer.plan().cells.size() - 1], Eigen::Vector2i(15, 30));
+  EXPECT_EQ(output.drive.linear_mps, 0.0);  // the start is behind: turn in place first
+  EXPECT_GT(std::abs(output.drive.angular_rad_s), 0.0);
+  EXPECT_EQ(explorer.step(input_at(scene.grid.view(), 1.52, 3.0, core::kPi, 200.0, false)).state,
+            ExploreState::finished);
+}
+
+TEST(Explorer, StopsExploringAtTheTimeLimit) {
+  Corridor scene;
+  ExploreParams params = no_look_params(100, 60);
+  params.explore.time_limit_s = 10.0;
+  Explorer explorer(params);
+  explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.0, true));
+  EXPECT_EQ(explorer.state(), ExploreState::drive);
+  const ExploreOutput output = explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 10.0, false));
+  EXPECT_EQ(output.state, ExploreState::finished);
+  EXPECT_EQ(explorer.finish_reason(), FinishReason::time_limit);
+  EXPECT_EQ(output.drive.linear_mps, 0.0);
+}
+
+TEST(Explorer, StepDoesNotAllocate) {
+  Corridor scene;
+  Explorer explorer(test_params(100, 60));
+  const core::AllocationScope scope;
+  double pan = 0.0;
+  for (int tick = 0; tick < 50; ++tick) {
+    ExploreInput input = input_at(scene.grid.view(), 1.5 + 0.01 * tick, 3.0, 0.0, 0.1 * tick, tick % 5 == 0);
+    input.pan_rad = pan;
+    pan = explorer.step(input).pan_target_rad;
+  }
+  EXPECT_EQ(explorer.state(), ExploreState::drive);
+  EXPECT_EQ(scope.allocations(), 0U);
+}
+
+}  // namespace
+}  // namespace stereoscout::explore

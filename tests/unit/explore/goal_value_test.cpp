@@ -1,0 +1,160 @@
+// Goal value H(s) (paper VI) on hand-made grids, and goal selection.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "stereoscout/explore/goal_value.hpp"
+#include "stereoscout/explore/navigation_map.hpp"
+#include "test_grid.hpp"
+
+namespace stereoscout::explore {
+namespace {
+
+using testing::TestGrid;
+using testing::test_params;
+
+// V along ray 0 (+x) from cell (5, 25) when the first non-free cell is `distance_cells` away.
+double value_with_unknown_at(int distance_cells) {
+  TestGrid grid(60, 50, CellState::free);
+  grid.set(5 + distance_cells, 25, CellState::unknown);
+  const GoalValue goal_value(test_params(60, 50));
+  return goal_value.ray_value(grid.view(), 5, 25, 0);
+}
+
+TEST(GoalValue, UnknownCellExactlyPreferredDistanceAwayMaximisesV) {
+  // r* = 2.0 m = 20 cells of 0.1 m.
+  EXPECT_DOUBLE_EQ(value_with_unknown_at(20), 1.0);
+  for (int distance = 1; distance <= 40; ++distance) {
+    if (distance != 20) {
+      EXPECT_LT(value_with_unknown_at(distance), 1.0) << distance;
+    }
+  }
+  // One sigma (0.5 m) off r*: exp(-1/2).
+  EXPECT_NEAR(value_with_unknown_at(25), std::exp(-0.5), 1e-12);
+  EXPECT_NEAR(value_with_unknown_at(15), std::exp(-0.5), 1e-12);
+}
+
+TEST(GoalValue, RaysAreCutAtThePreferredDistancePlusThreeSigma) {
+  // Cap r* + 3 sigma = 3.5 m: an unknown cell at 3.5 m counts, at 3.6 m the ray saw only free.
+  EXPECT_NEAR(value_with_unknown_at(35), std::exp(-4.5), 1e-12);
+  EXPECT_EQ(value_with_unknown_at(36), 0.0);
+}
+
+TEST(GoalValue, OccupiedCellBlocksTheRay) {
+  TestGrid grid(60, 50, CellState::free);
+  grid.set(25, 25, CellState::unknown);
+  const GoalValue goal_value(test_params(60, 50));
+  EXPECT_DOUBLE_EQ(goal_value.ray_value(grid.view(), 5, 25, 0), 1.0);
+  grid.set(15, 25, CellState::occupied);
+  EXPECT_EQ(goal_value.ray_value(grid.view(), 5, 25, 0), 0.0);
+}
+
+TEST(GoalValue, HSumsSeventyTwoRays) {
+  // A free disc of radius 2.0 m in unknown space: every ray meets unknown near r*.
+  TestGrid grid(80, 80, CellState::unknown);
+  for (int y = 0; y < 80; ++y) {
+    for (int x = 0; x < 80; ++x) {
+      if (std::hypot(x - 40, y - 40) < 20.0) grid.set(x, y, CellState::free);
+    }
+  }
+  const GoalValue goal_value(test_params(80, 80));
+  ASSERT_EQ(goal_value.ray_count(), 72U);
+  const double h = goal_value.value(grid.view(), 40, 40);
+  double sum = 0.0;
+  for (std::size_t k = 0; k < 72; ++k) sum += goal_value.ray_value(grid.view(), 40, 40, k);
+  EXPECT_EQ(h, sum);
+  EXPECT_GT(h, 0.95 * 72.0);  // first unknown cell 2.0 to 2.1 m away on every ray
+  // Walls all around: nothing left to see.
+  TestGrid closed(80, 80, CellState::free);
+  closed.walls();
+  EXPECT_EQ(goal_value.value(closed.view(), 40, 40), 0.0);
+}
+
+TEST(GoalMemory, BlacklistsAfterTheConfiguredFailures) {
+  GoalMemory memory(4, 0.5, 3);
+  const Eigen::Vector2d goal(2.0, 1.0);
+  EXPECT_FALSE(memory.record_failure(goal));
+  EXPECT_FALSE(memory.record_failure(goal + Eigen::Vector2d(0.2, 0.0)));  // same goal, within radius
+  EXPECT_FALSE(memory.excluded(goal));
+  EXPECT_TRUE(memory.record_failure(goal));
+  EXPECT_TRUE(memory.excluded(goal + Eigen::Vector2d(0.0, 0.4)));
+  EXPECT_FALSE(memory.excluded(goal + Eigen::Vector2d(0.0, 0.6)));
+  EXPECT_EQ(memory.blacklisted(), 1U);
+  memory.record_visit(Eigen::Vector2d(5.0, 5.0));
+  EXPECT_TRUE(memory.excluded(Eigen::Vector2d(5.0, 5.0)));
+  memory.record_visit(Eigen::Vector2d(7.0, 5.0));
+  memory.record_visit(Eigen::Vector2d(9.0, 5.0));
+  memory.record_visit(Eigen::Vector2d(11.0, 5.0));  // full: counted, forgotten
+  EXPECT_EQ(memory.forgotten(), 1U);
+}
+
+// A known free room (walls around) with an unknown region beyond its right wall seen through
+// a doorway, and a second free room that is not connected to the robot's.
+struct SelectionScene {
+  TestGrid grid{120, 60, CellState::unknown};
+  SelectionScene() {
+    grid.fill(0, 0, 60, 60, CellState::free);
+    grid.fill(0, 0, 60, 1, CellState::occupied);
+    grid.fill(0, 59, 60, 60, CellState::occupied);
+    grid.fill(0, 0, 1, 60, CellState::occupied);
+    grid.fill(59, 0, 60, 60, CellState::occupied);
+    grid.fill(59, 25, 60, 35, CellState::free);  // 1 m doorway to the unknown right half
+    // An isolated free pocket inside the unknown half, walled off.
+    grid.fill(90, 5, 110, 20, CellState::occupied);
+    grid.fill(91, 6, 109, 19, CellState::free);
+  }
+};
+
+TEST(GoalValue, SelectsAReachableSafeCellFacingTheUnknown) {
+  SelectionScene scene;
+  const ExploreParams params = test_params(120, 60);
+  NavigationMap map(params);
+  const Eigen::Vector2d robot(1.5, 3.0);
+  ASSERT_TRUE(map.rebuild(scene.grid.view(), robot, robot));
+  map.compute_reachable(scene.grid.view().cell_of(robot));
+  GoalMemory memory(16, params.explore.visited_goal_radius_m, params.explore.goal_failures_before_blacklist);
+  const GoalValue goal_value(params);
+  const Goal goal = goal_value.select(map, memory);
+  ASSERT_TRUE(goal.valid);
+  EXPECT_TRUE(map.reachable(goal.cell.x(), goal.cell.y()));
+  EXPECT_EQ(map.traversability(goal.cell.x(), goal.cell.y()), Traversability::safe);
+  EXPECT_LT(goal.cell.x(), 59);  // in the robot's room, not the isolated pocket
+  EXPECT_GT(goal.value, params.explore.min_goal_value);
+  EXPECT_DOUBLE_EQ(goal.value, goal_value.value(scene.grid.view(), goal.cell.x(), goal.cell.y()));
+  // No candidate is worth more (full-resolution search over the candidates).
+  double best = 0.0;
+  for (int y = 0; y < 60; ++y) {
+    for (int x = 0; x < 120; ++x) {
+      if (goal_value.is_candidate(map, memory, x, y)) best = std::max(best, goal_value.value(scene.grid.view(), x, y));
+    }
+  }
+  EXPECT_GT(goal.value, 0.9 * best);  // lattice then local refinement finds (nearly) the optimum
+  // Blacklisting the chosen goal moves the choice elsewhere.
+  for (int k = 0; k < params.explore.goal_failures_before_blacklist; ++k) memory.record_failure(goal.position);
+  const Goal next = goal_value.select(map, memory);
+  ASSERT_TRUE(next.valid);
+  EXPECT_GT((next.position - goal.position).norm(), params.explore.visited_goal_radius_m);
+}
+
+TEST(NavigationMap, InflatesObstaclesByTheRobotRadiusAndMargin) {
+  TestGrid grid(60, 60, CellState::free);
+  grid.set(30, 30, CellState::occupied);
+  const ExploreParams params = test_params(60, 60);
+  NavigationMap map(params);
+  const Eigen::Vector2d robot(1.0, 1.0);
+  ASSERT_TRUE(map.rebuild(grid.view(), robot, robot));
+  EXPECT_DOUBLE_EQ(map.occupied_distance_m(34, 30), 0.4);
+  EXPECT_NEAR(map.occupied_distance_m(33, 34), 0.5, 1e-12);
+  EXPECT_EQ(map.traversability(30, 30), Traversability::lethal);
+  EXPECT_EQ(map.traversability(33, 30), Traversability::lethal);    // 0.3 m < 0.35 + 0.05
+  EXPECT_EQ(map.traversability(34, 30), Traversability::inflated);  // 0.4 m, inside the 0.1 m margin
+  EXPECT_EQ(map.traversability(35, 30), Traversability::safe);      // 0.5 m
+  // Unknown cells are passable only near the robot.
+  TestGrid unknown(60, 60, CellState::unknown);
+  ASSERT_TRUE(map.rebuild(unknown.view(), robot, robot));
+  EXPECT_TRUE(map.passable(14, 10));   // 0.4 m from the robot
+  EXPECT_FALSE(map.passable(25, 10));  // 1.5 m from the robot
+}
+
+}  // namespace
+}  // namespace stereoscout::explore

@@ -1,0 +1,165 @@
+// A* against a brute-force Dijkstra over the same passable cells and step costs.
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "stereoscout/core/allocation_counter.hpp"
+#include "stereoscout/core/random.hpp"
+#include "stereoscout/explore/path_planner.hpp"
+#include "test_grid.hpp"
+
+namespace stereoscout::explore {
+namespace {
+
+using testing::TestGrid;
+using testing::test_params;
+
+// Cheapest cost from start to goal, relaxing every edge until nothing changes (Bellman-Ford
+// style; slow and obviously correct).
+double brute_force_cost(const NavigationMap& map, const Eigen::Vector2i& start, const Eigen::Vector2i& goal) {
+  const GridView& grid = map.grid();
+  const double infinity = std::numeric_limits<double>::infinity();
+  std::vector<double> cost(static_cast<std::size_t>(grid.width * grid.height), infinity);
+  cost[map.index(start.x(), start.y())] = 0.0;
+  bool changed = true;
+  while (changed) {
+    changed = false;
+    for (int y = 0; y < grid.height; ++y) {
+      for (int x = 0; x < grid.width; ++x) {
+        const double here = cost[map.index(x, y)];
+        if (here == infinity) continue;
+        for (int dy = -1; dy <= 1; ++dy) {
+          for (int dx = -1; dx <= 1; ++dx) {
+            if ((dx == 0 && dy == 0) || !map.passable(x + dx, y + dy)) continue;
+            double& there = cost[map.index(x + dx, y + dy)];
+            const double candidate = here + map.step_cost(x, y, x + dx, y + dy);
+            if (candidate < there - 1e-12) {
+              there = candidate;
+              changed = true;
+            }
+          }
+        }
+      }
+    }
+  }
+  return cost[map.index(goal.x(), goal.y())];
+}
+
+// Random rectangles of obstacles on a 40 x 30 grid of 0.1 m cells (a shrunken robot so that
+// narrow gaps stay open and the obstacle penalty matters).
+void random_obstacles(TestGrid& grid, std::uint64_t seed) {
+  core::RandomStream random(seed, core::StreamId{0, 0, 0});
+  for (int k = 0; k < 9; ++k) {
+    const int x = static_cast<int>(random.uniform_index(36));
+    const int y = static_cast<int>(random.uniform_index(26));
+    const int w = 1 + static_cast<int>(random.uniform_index(5));
+    const int h = 1 + static_cast<int>(random.uniform_index(8));
+    grid.fill(x, y, std::min(40, x + w), std::min(30, y + h), CellState::occupied);
+  }
+  grid.fill(1, 1, 4, 4, CellState::free);
+  grid.fill(36, 26, 39, 29, CellState::free);
+}
+
+ExploreParams small_robot_params() {
+  ExploreParams params = test_params(40, 30);
+  params.robot_radius_m = 0.05;
+  params.explore.safety_margin_m = 0.05;
+  params.explore.preferred_clearance_m = 0.4;
+  return params;
+}
+
+TEST(PathPlanner, FindsTheCheapestPathOnRandomGrids) {
+  const ExploreParams params = small_robot_params();
+  NavigationMap map(params);
+  PathPlanner planner(params);
+  Plan plan(4096);
+  int found = 0;
+  for (std::uint64_t seed = 1; seed <= 40; ++seed) {
+    TestGrid grid(40, 30, CellState::free);
+    random_obstacles(grid, seed);
+    const Eigen::Vector2d robot(0.25, 0.25);
+    ASSERT_TRUE(map.rebuild(grid.view(), robot, robot));
+    const Eigen::Vector2i start(2, 2);
+    const Eigen::Vector2i goal(37, 27);
+    const double expected = brute_force_cost(map, start, goal);
+    const PlanResult result = planner.plan(map, start, goal, plan);
+    if (std::isinf(expected)) {
+      EXPECT_EQ(result, PlanResult::no_path) << seed;
+      continue;
+    }
+    ++found;
+    ASSERT_EQ(result, PlanResult::found) << seed;
+    EXPECT_NEAR(plan.cost, expected, 1e-4 * expected) << seed;
+    ASSERT_GE(plan.cells.size(), 2U);
+    EXPECT_EQ(plan.cells[0], start);
+    EXPECT_EQ(plan.cells[plan.cells.size() - 1], goal);
+    double sum = 0.0;
+    for (std::size_t k = 1; k < plan.cells.size(); ++k) {
+      const Eigen::Vector2i step = plan.cells[k] - plan.cells[k - 1];
+      EXPECT_LE(std::max(std::abs(step.x()), std::abs(step.y())), 1);
+      EXPECT_TRUE(map.passable(plan.cells[k].x(), plan.cells[k].y()));
+      sum += map.step_cost(plan.cells[k - 1].x(), plan.cells[k - 1].y(), plan.cells[k].x(), plan.cells[k].y());
+    }
+    EXPECT_NEAR(sum, plan.cost, 1e-4 * sum);
+  }
+  EXPECT_GT(found, 20);  // most random grids have a path
+}
+
+TEST(PathPlanner, StraightLineInOpenSpaceAndKeepsAwayFromObstacles) {
+  const ExploreParams params = test_params(60, 40);
+  NavigationMap map(params);
+  PathPlanner planner(params);
+  Plan plan(4096);
+  TestGrid grid(60, 40, CellState::free);
+  grid.walls();
+  const Eigen::Vector2d robot(1.0, 2.0);
+  ASSERT_TRUE(map.rebuild(grid.view(), robot, robot));
+  ASSERT_EQ(planner.plan(map, {10, 20}, {50, 20}, plan), PlanResult::found);
+  EXPECT_EQ(plan.cells.size(), 41U);
+  for (const Eigen::Vector2i& cell : plan.cells) EXPECT_EQ(cell.y(), 20);
+  // A pillar next to the straight line: the path bends away from it beyond the margin.
+  grid.fill(29, 14, 31, 17, CellState::occupied);
+  ASSERT_TRUE(map.rebuild(grid.view(), robot, robot));
+  ASSERT_EQ(planner.plan(map, {10, 20}, {50, 20}, plan), PlanResult::found);
+  for (const Eigen::Vector2i& cell : plan.cells) {
+    EXPECT_GE(map.occupied_distance_m(cell.x(), cell.y()), params.safe_distance_m(0.1) - 1e-9);
+  }
+}
+
+TEST(PathPlanner, ReportsBlockedGoalsFullPlansAndNoPath) {
+  const ExploreParams params = test_params(60, 40);
+  NavigationMap map(params);
+  PathPlanner planner(params);
+  TestGrid grid(60, 40, CellState::free);
+  grid.walls();
+  grid.fill(30, 0, 31, 40, CellState::occupied);  // splits the room
+  const Eigen::Vector2d robot(1.0, 2.0);
+  ASSERT_TRUE(map.rebuild(grid.view(), robot, robot));
+  Plan plan(4096);
+  EXPECT_EQ(planner.plan(map, {10, 20}, {50, 20}, plan), PlanResult::no_path);
+  EXPECT_EQ(planner.plan(map, {10, 20}, {30, 20}, plan), PlanResult::goal_blocked);
+  Plan tiny(5);
+  EXPECT_EQ(planner.plan(map, {10, 20}, {20, 20}, tiny), PlanResult::plan_full);
+  EXPECT_TRUE(tiny.empty());
+}
+
+TEST(PathPlanner, RebuildingAndPlanningDoNotAllocate) {
+  const ExploreParams params = test_params(200, 200);
+  NavigationMap map(params);
+  PathPlanner planner(params);
+  Plan plan(4096);
+  TestGrid grid(200, 200, CellState::free);
+  grid.walls();
+  grid.fill(100, 0, 101, 150, CellState::occupied);
+  const Eigen::Vector2d robot(1.0, 1.0);
+  const core::AllocationScope scope;
+  ASSERT_TRUE(map.rebuild(grid.view(), robot, robot));
+  map.compute_reachable({10, 10});
+  EXPECT_EQ(planner.plan(map, {10, 10}, {190, 10}, plan), PlanResult::found);
+  EXPECT_EQ(scope.allocations(), 0U);
+}
+
+}  // namespace
+}  // namespace stereoscout::explore
