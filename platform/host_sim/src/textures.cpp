@@ -44,22 +44,25 @@ class Canvas {
   std::vector<float> values_;
 };
 
-// Smooth random field in [0, 1]: random values on a grid of `cell` texels, bilinearly
-// interpolated, wrapping so the tile repeats seamlessly.
+// Smooth random field in [0, 1]: random values on a grid of `cell` texels (a power of two),
+// bilinearly interpolated, wrapping so the tile repeats seamlessly.
 Canvas value_noise(core::RandomStream& random, int cell) {
-  const int cells = kSize / cell;
+  int cell_log2 = 0;
+  while ((1 << cell_log2) < cell) ++cell_log2;
+  const int cells = kSize >> cell_log2;
   std::vector<float> grid(static_cast<std::size_t>(cells * cells));
   for (float& g : grid) g = static_cast<float>(random.uniform());
-  auto node = [&](int i, int j) {
-    return grid[static_cast<std::size_t>(((j % cells + cells) % cells) * cells + (i % cells + cells) % cells)];
+  const auto node = [&](int i, int j) {
+    return grid[static_cast<std::size_t>((j & (cells - 1)) * cells + (i & (cells - 1)))];
   };
+  const float inverse_cell = 1.0F / static_cast<float>(1 << cell_log2);
   Canvas canvas;
   for (int v = 0; v < kSize; ++v) {
+    const int j = v >> cell_log2;
+    const float fv = static_cast<float>(v & ((1 << cell_log2) - 1)) * inverse_cell;
     for (int u = 0; u < kSize; ++u) {
-      const int i = u / cell;
-      const int j = v / cell;
-      const float fu = static_cast<float>(u % cell) / static_cast<float>(cell);
-      const float fv = static_cast<float>(v % cell) / static_cast<float>(cell);
+      const int i = u >> cell_log2;
+      const float fu = static_cast<float>(u & ((1 << cell_log2) - 1)) * inverse_cell;
       const float bottom = node(i, j) * (1.0F - fu) + node(i + 1, j) * fu;
       const float top = node(i, j + 1) * (1.0F - fu) + node(i + 1, j + 1) * fu;
       canvas.at(u, v) = bottom * (1.0F - fv) + top * fv;
