@@ -81,10 +81,9 @@ GridGeometry fit_trajectory_geometry(const slam::TrajectoryTree& tree, slam::Tra
 }
 
 std::unique_ptr<OccupancyGrid> build_final_map(const slam::TrajectoryTree& tree, slam::TrajectoryNodeHandle node,
-                                               const ScanHistory& scans, double resolution_m,
+                                               const ScanHistory& scans, double resolution_m, double margin_m,
                                                const LogOddsModel& model, TrajectoryScanCounts* counts) {
-  constexpr double kMarginM = 0.5;
-  const GridGeometry geometry = fit_trajectory_geometry(tree, node, scans, resolution_m, kMarginM);
+  const GridGeometry geometry = fit_trajectory_geometry(tree, node, scans, resolution_m, margin_m);
   auto grid = std::make_unique<OccupancyGrid>(geometry, model);
   const TrajectoryScanCounts inserted = insert_trajectory_scans(tree, node, scans, *grid);
   if (counts != nullptr) *counts = inserted;

@@ -23,7 +23,11 @@ struct DriverSettings {
   double step_m = 0.07;              // paper: an update every 7 cm
   double turn_rad = 0.05;
   double motion_noise_m = 0.01;
-  double weight_noise = 1.0;         // spread of per-update log-likelihoods
+  double weight_noise = 1.0;         // spread of i.i.d. per-update log-likelihoods
+  // > 0: the log-likelihood also scores each particle's distance to the true (noise-free)
+  // path, as landmark observations do, so good lineages stay good (a real filter's genealogy).
+  double likelihood_sigma_m = 0.0;
+  double likelihood_sigma_rad = 0.02;
   double resample_fraction = 0.5;    // resample when ESS < fraction * N
 };
 
@@ -47,10 +51,12 @@ class AncestryDriver {
     }
     update_index_ = 0;
     ml_ = 0;
+    truth_ = pose;
   }
 
   void step() {
     ++update_index_;
+    truth_ = truth_.compose(core::Pose2{settings_.step_m, 0.0, settings_.turn_rad});
     for (std::size_t i = 0; i < nodes_.size(); ++i) {
       core::RandomStream random(settings_.seed, {core::stream_purpose::test, update_index_, static_cast<std::uint32_t>(i)});
       const core::Pose2 parent = tree_.get(nodes_[i]).pose;
@@ -61,7 +67,7 @@ class AncestryDriver {
           tree_.add(nodes_[i], parent.compose(motion), static_cast<std::int64_t>(update_index_) * 1000, update_index_);
       tree_.release(nodes_[i]);
       nodes_[i] = child;
-      log_weights_[i] += random.gaussian(0.0, settings_.weight_noise);
+      log_weights_[i] += random.gaussian(0.0, settings_.weight_noise) + path_log_likelihood(tree_.get(child).pose);
     }
     choose_ml();
     if (effective_sample_size() < settings_.resample_fraction * static_cast<double>(nodes_.size())) resample();
@@ -105,6 +111,15 @@ class AncestryDriver {
  private:
   void choose_ml() {
     ml_ = static_cast<std::size_t>(std::max_element(log_weights_.begin(), log_weights_.end()) - log_weights_.begin());
+  }
+
+  double path_log_likelihood(const core::Pose2& pose) const {
+    if (settings_.likelihood_sigma_m <= 0.0) return 0.0;
+    const core::Pose2 error = truth_.between(pose);
+    const double position = (error.x * error.x + error.y * error.y) /
+                            (settings_.likelihood_sigma_m * settings_.likelihood_sigma_m);
+    const double heading = error.theta * error.theta / (settings_.likelihood_sigma_rad * settings_.likelihood_sigma_rad);
+    return -0.5 * (position + heading);
   }
 
   double effective_sample_size() const {
@@ -158,6 +173,7 @@ class AncestryDriver {
   std::vector<double> scratch_weights_;
   std::uint32_t update_index_ = 0;
   std::size_t ml_ = 0;
+  core::Pose2 truth_;
   std::uint64_t resamplings_ = 0;
 };
 

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <vector>
 
 #include "ancestry_driver.hpp"
@@ -194,6 +195,50 @@ TEST(JustInTimeGrid, UpdateDoesNotTouchTheHeap) {
   EXPECT_GT(cache.stats().copies, 0u);
 }
 
+// 1000 particles whose log-likelihoods score their distance to the true path (sigma 1 cm),
+// 200 updates: the cache stays inside its 64 slots without evicting, the update never
+// touches the heap, and the final ML grid still equals the one built from scratch.
+TEST(JustInTimeGrid, ThousandParticlesStayInsideTheCache) {
+  core::GridConfig config = small_config(64, 1000);
+  config.width_cells = 40;
+  config.height_cells = 40;
+  slam::TrajectoryTree tree(1000 * 210);
+  DriverSettings settings;
+  settings.particles = 1000;
+  settings.weight_noise = 0.1;
+  settings.likelihood_sigma_m = 0.01;
+  AncestryDriver driver(tree, settings);
+  const GridGeometry geometry = GridGeometry::centred_on(config, core::Pose2{});
+  JustInTimeGrid cache(config, geometry, 8, tree);
+  core::DepthScan scan;
+  driver.make_scan(scan, 8);
+  driver.start(core::Pose2{});
+  std::uint64_t allocations = 0;
+  for (std::uint32_t u = 0; u <= 200; ++u) {
+    if (u > 0) driver.step();
+    driver.make_scan(scan, 8);
+    core::AllocationScope scope;
+    cache.record_scan(u, scan);
+    cache.update(driver.ml_node(), driver.nodes(), driver.count());
+    allocations += scope.allocations();
+  }
+  const JustInTimeGridStats& stats = cache.stats();
+  EXPECT_EQ(allocations, 0u);
+  EXPECT_EQ(stats.evictions, 0u);
+  EXPECT_LE(stats.grids_held_max, 64u);
+  EXPECT_GT(stats.copies, 0u);
+  EXPECT_EQ(stats.rollup_incomplete, 0u);
+  OccupancyGrid reference(geometry, LogOddsModel::from_config(config));
+  insert_trajectory_scans(tree, driver.ml_node(), cache.scans(), reference);
+  EXPECT_TRUE(reference.same_cells_as(*cache.ml_grid()));
+  std::printf("1000 particles, 201 updates: grids held mean %.2f max %llu; roll-up length mean %.2f max %llu; "
+              "copies %llu moves %llu; walk steps per update %.0f\n",
+              stats.mean_grids_held(), static_cast<unsigned long long>(stats.grids_held_max),
+              stats.mean_rollup_length(), static_cast<unsigned long long>(stats.rollup_length_max),
+              static_cast<unsigned long long>(stats.copies), static_cast<unsigned long long>(stats.moves),
+              static_cast<double>(stats.dependents_walk_steps) / static_cast<double>(stats.updates));
+}
+
 TEST(JustInTimeGrid, FinalMapHoldsTheWholeTrajectory) {
   const core::GridConfig config = small_config(8, 100);
   slam::TrajectoryTree tree(5000);
@@ -218,7 +263,7 @@ TEST(JustInTimeGrid, FinalMapHoldsTheWholeTrajectory) {
   EXPECT_TRUE(rebuilt.same_cells_as(*cache.ml_grid()));
   // Final map at 1 cm: fitted around the trajectory and its scans.
   TrajectoryScanCounts final_counts;
-  const auto final_map = build_final_map(tree, driver.ml_node(), cache.scans(), 0.01,
+  const auto final_map = build_final_map(tree, driver.ml_node(), cache.scans(), 0.01, 0.5,
                                          LogOddsModel::from_config(config), &final_counts);
   EXPECT_EQ(final_counts.scans_inserted, 40u);
   int cell_x = 0;

@@ -28,9 +28,10 @@ TrajectoryScanCounts insert_trajectory_scans(const slam::TrajectoryTree& tree, s
 GridGeometry fit_trajectory_geometry(const slam::TrajectoryTree& tree, slam::TrajectoryNodeHandle node,
                                      const ScanHistory& scans, double resolution_m, double margin_m);
 
-// fit_trajectory_geometry + insert_trajectory_scans.
+// fit_trajectory_geometry + insert_trajectory_scans (config: grid.final_map_resolution_m,
+// grid.final_map_margin_m).
 std::unique_ptr<OccupancyGrid> build_final_map(const slam::TrajectoryTree& tree, slam::TrajectoryNodeHandle node,
-                                               const ScanHistory& scans, double resolution_m,
+                                               const ScanHistory& scans, double resolution_m, double margin_m,
                                                const LogOddsModel& model, TrajectoryScanCounts* counts = nullptr);
 
 }  // namespace stereoscout::occupancy

@@ -16,7 +16,8 @@ struct GridConfig {
   double occupied_threshold = 0.65;
   double free_threshold = 0.196;
   int cache_capacity = 64;
-  int scan_history = 1024;
+  int scan_history = 4096;
+  double final_map_margin_m = 0.5;
 };
 
 inline void describe(ConfigVisitor& v, GridConfig& c) {
@@ -31,8 +32,9 @@ inline void describe(ConfigVisitor& v, GridConfig& c) {
   v.number("log_odds_max", c.log_odds_max, {0.0, 100.0, "", "Upper clamp of a cell's log-odds."});
   v.number("occupied_threshold", c.occupied_threshold, {0.0, 1.0, "", "Probability above which a cell is occupied (map.yaml occupied_thresh)."});
   v.number("free_threshold", c.free_threshold, {0.0, 1.0, "", "Probability below which a cell is free (map.yaml free_thresh)."});
-  v.integer_field("cache_capacity", c.cache_capacity, {2, 100000, "grids", "Grids the just-in-time cache can hold (paper saw 23 at most for 1000 particles)."});
-  v.integer_field("scan_history", c.scan_history, {1, 1000000, "scans", "Depth scans kept for roll-ups."});
+  v.integer_field("cache_capacity", c.cache_capacity, {2, 100000, "grids", "Grids the just-in-time cache can hold, all allocated at start-up (width x height x 4 bytes each; paper saw 23 at most for 1000 particles). When full, the grid with the fewest dependents is evicted and counted."});
+  v.integer_field("scan_history", c.scan_history, {1, 1000000, "scans", "Depth scans kept for roll-ups and the final map (the paper's run had 2209 updates). Also bounds the walk to a grid-holding ancestor; a roll-up that needs an older scan skips it and counts rollup_incomplete."});
+  v.number("final_map_margin_m", c.final_map_margin_m, {0.0, 100.0, "m", "Border added around the trajectory and its scans when the final map is sized."});
   v.require(c.free_threshold < c.occupied_threshold, "free_threshold", "must be below occupied_threshold");
   v.end_section();
 }
