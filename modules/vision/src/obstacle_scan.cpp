@@ -22,24 +22,53 @@ ObstacleScanner::ObstacleScanner(const ObstacleScanParams& params, const StereoC
     : params_(params),
       calibration_(calibration),
       mount_(mount),
-      nearest_(static_cast<std::size_t>(std::max(params.min_obstacle_pixels, 1))) {}
+      per_column_(static_cast<std::size_t>(std::max(params.min_obstacle_pixels, 1))),
+      columns_(static_cast<std::size_t>(calibration.width_px)),
+      nearest_(static_cast<std::size_t>(calibration.width_px) * per_column_) {}
 
 void ObstacleScanner::allocate(core::DepthScan& scan) const {
   scan.columns.assign(static_cast<std::size_t>(calibration_.width_px), core::DepthScanColumn{});
 }
 
-// Keeps the nearest_.capacity() nearest obstacle points, sorted by range (insertion sort).
-void ObstacleScanner::keep_nearest(const Candidate& candidate) {
-  if (nearest_.full()) {
-    if (candidate.range_m >= nearest_.back().range_m) {
+void ObstacleScanner::reset_columns() {
+  for (ColumnState& state : columns_) {
+    state = ColumnState{};
+  }
+}
+
+// Keeps a column's per_column_ nearest obstacle points, sorted by range (insertion sort).
+void ObstacleScanner::keep_nearest(ColumnState& state, Candidate* nearest, const Candidate& candidate) const {
+  auto used = static_cast<std::size_t>(state.obstacle_points);
+  if (used == per_column_) {
+    if (candidate.range_m >= nearest[used - 1].range_m) {
       return;
     }
-    nearest_.pop_back();
+    --used;
   }
-  nearest_.push_back(candidate);
-  for (std::size_t i = nearest_.size() - 1; i > 0 && nearest_[i].range_m < nearest_[i - 1].range_m; --i) {
-    std::swap(nearest_[i], nearest_[i - 1]);
+  nearest[used] = candidate;
+  for (std::size_t i = used; i > 0 && nearest[i].range_m < nearest[i - 1].range_m; --i) {
+    std::swap(nearest[i], nearest[i - 1]);
   }
+  state.obstacle_points = static_cast<int>(used + 1);
+}
+
+void ObstacleScanner::add_point(int column, const Eigen::Vector3d& point, const Eigen::Vector3d& origin) {
+  ColumnState& state = columns_[static_cast<std::size_t>(column)];
+  const double dx = point.x() - origin.x();
+  const double dy = point.y() - origin.y();
+  const double range = std::hypot(dx, dy);
+  if (std::fabs(point.z()) <= params_.floor_tolerance_m) {
+    if (!state.has_floor || range > state.farthest_floor.range_m) {
+      state.has_floor = true;
+      const double capped = std::min(range, params_.max_range_m);
+      const double scale = range > 0.0 ? capped / range : 0.0;
+      state.farthest_floor = {range, origin.x() + dx * scale, origin.y() + dy * scale};
+    }
+  } else if (point.z() > params_.floor_tolerance_m && point.z() < params_.robot_height_m &&
+             range <= params_.max_range_m) {
+    keep_nearest(state, &nearest_[static_cast<std::size_t>(column) * per_column_], {range, point.x(), point.y()});
+  }
+  // Points below the floor or above the robot are ignored.
 }
 
 void ObstacleScanner::compute(const cv::Mat& disparity, double pan_rad, std::int64_t timestamp_ns,
@@ -51,40 +80,34 @@ void ObstacleScanner::compute(const cv::Mat& disparity, double pan_rad, std::int
   const Eigen::Vector3d origin = robot_from_camera.translation();
   scan.timestamp_ns = timestamp_ns;
   scan.origin_robot = origin.head<2>();
-  for (int x = 0; x < disparity.cols; ++x) {
-    nearest_.clear();
-    bool has_floor = false;
-    Candidate farthest_floor;
-    for (int y = disparity.rows - 1; y >= 0; --y) {
-      const float d = disparity.at<float>(y, x);
+  reset_columns();
+  for (int y = disparity.rows - 1; y >= 0; --y) {  // bottom row up
+    const float* row = disparity.ptr<float>(y);
+    for (int x = 0; x < disparity.cols; ++x) {
+      const float d = row[x];
       if (!(d > 0.0F)) {
         continue;  // invalid (kInvalidDisparity) or at infinity
       }
-      const Eigen::Vector3d point = robot_from_camera * triangulate_point(calibration_, x - static_cast<double>(d), y, d);
-      const double dx = point.x() - origin.x();
-      const double dy = point.y() - origin.y();
-      const double range = std::hypot(dx, dy);
-      if (std::fabs(point.z()) <= params_.floor_tolerance_m) {
-        if (!has_floor || range > farthest_floor.range_m) {
-          has_floor = true;
-          const double capped = std::min(range, params_.max_range_m);
-          const double scale = range > 0.0 ? capped / range : 0.0;
-          farthest_floor = {capped, origin.x() + dx * scale, origin.y() + dy * scale};
-        }
-      } else if (point.z() > params_.floor_tolerance_m && point.z() < params_.robot_height_m &&
-                 range <= params_.max_range_m) {
-        keep_nearest({range, point.x(), point.y()});
+      const double x_right = x - static_cast<double>(d);
+      const auto column = static_cast<int>(std::lround(x_right));
+      if (column < 0 || column >= disparity.cols) {
+        continue;
       }
+      add_point(column, robot_from_camera * triangulate_point(calibration_, x_right, y, d), origin);
     }
-    core::DepthScanColumn& column = scan.columns[static_cast<std::size_t>(x)];
-    if (nearest_.full()) {
-      column = {static_cast<float>(nearest_.back().x_m), static_cast<float>(nearest_.back().y_m),
-                core::DepthScanColumn::Kind::obstacle};
-    } else if (has_floor) {
-      column = {static_cast<float>(farthest_floor.x_m), static_cast<float>(farthest_floor.y_m),
-                core::DepthScanColumn::Kind::free};
+  }
+  for (std::size_t column = 0; column < columns_.size(); ++column) {
+    const ColumnState& state = columns_[column];
+    core::DepthScanColumn& out = scan.columns[column];
+    if (static_cast<std::size_t>(state.obstacle_points) == per_column_) {
+      // The farthest of the nearest min_obstacle_pixels points: confirmed by that many.
+      const Candidate& confirmed = nearest_[column * per_column_ + per_column_ - 1];
+      out = {static_cast<float>(confirmed.x_m), static_cast<float>(confirmed.y_m), core::DepthScanColumn::Kind::obstacle};
+    } else if (state.has_floor) {
+      out = {static_cast<float>(state.farthest_floor.x_m), static_cast<float>(state.farthest_floor.y_m),
+             core::DepthScanColumn::Kind::free};
     } else {
-      column = {0.0F, 0.0F, core::DepthScanColumn::Kind::invalid};
+      out = {0.0F, 0.0F, core::DepthScanColumn::Kind::invalid};
     }
   }
 }

@@ -98,11 +98,12 @@ TEST(ObstacleScan, IsolatedMismatchesDoNotMakeObstacles) {
   scanner.allocate(scan);
   const test::Rendering view = test::render(test::Scene{}, camera, paper_mount(), core::Pose2{});
   cv::Mat disparity = disparity_from_depth(view.left_depth, camera);
-  // Three wrong pixels in column 100 claim a point 1 m ahead at camera height.
-  for (int y = 230; y < 233; ++y) disparity.at<float>(y, 100) = 40.0F;
+  // Three wrong pixels in left column 140 claim a point 1 m ahead at camera height; with
+  // d = 40 they belong to right column 100.
+  for (int y = 230; y < 233; ++y) disparity.at<float>(y, 140) = 40.0F;
   scanner.compute(disparity, 0.0, 0, scan);
   EXPECT_EQ(scan.columns[100].kind, Kind::free);
-  disparity.at<float>(233, 100) = 40.0F;  // the fourth (scan_min_obstacle_pixels) confirms it
+  disparity.at<float>(233, 140) = 40.0F;  // the fourth (scan_min_obstacle_pixels) confirms it
   scanner.compute(disparity, 0.0, 0, scan);
   EXPECT_EQ(scan.columns[100].kind, Kind::obstacle);
 }
@@ -121,9 +122,8 @@ TEST(ObstacleScan, PanTurnsTheScanInTheRobotFrame) {
   const core::DepthScanColumn& centre = scan.columns[320];
   ASSERT_EQ(centre.kind, Kind::obstacle);
   EXPECT_NEAR(centre.y_robot_m, 2.0, 0.02);
-  // Pan +90 deg turns the optical x axis to the robot's +x, so the left camera (whose
-  // columns the scan follows) sits a baseline behind the right one, at x = 0.
-  EXPECT_NEAR(centre.x_robot_m, 0.0, 0.02);
+  // Columns are rays from the right camera, which pan keeps at the mount (x = 0.1 m).
+  EXPECT_NEAR(centre.x_robot_m, 0.10, 0.02);
 }
 
 // The whole dense path on rendered images against the ground-truth scan.

@@ -2,9 +2,10 @@
 // The 2.5D obstacle scan (paper section V): a planar-laser-like scan made from dense stereo
 // that also sees obstacles a planar laser would miss (a low box, a table top).
 //
-// For each column of the (left-referenced) disparity map, every valid pixel is triangulated
-// (eq. 3) and moved into the robot frame at capture time with core::robot_from_camera
-// (mount and pan). Scanning the column from the bottom row up:
+// Every valid pixel of the (left-referenced) disparity map is triangulated (eq. 3), moved into
+// the robot frame at capture time with core::robot_from_camera (mount and pan) and filed
+// under its column in the RIGHT image (x_left - d), so every column is a ray from the right
+// camera's centre, `origin_robot`, the origin the occupancy grid ray-casts from. Per column:
 //   - a point higher than floor_tolerance_m above the floor and lower than the robot's height
 //     is an obstacle point; the column's obstacle is the nearest such point, confirmed by
 //     min_obstacle_pixels obstacle points no farther than it (a single mismatch cannot make
@@ -18,12 +19,12 @@
 // under it is free floor: the robot cannot drive under it.
 
 #include <cstdint>
+#include <vector>
 
 #include <opencv2/core/mat.hpp>
 
 #include "stereoscout/core/config/robot.hpp"
 #include "stereoscout/core/config/vision.hpp"
-#include "stereoscout/core/fixed_vector.hpp"
 #include "stereoscout/core/geometry.hpp"
 #include "stereoscout/core/messages.hpp"
 #include "stereoscout/vision/calibration.hpp"
@@ -56,12 +57,21 @@ class ObstacleScanner {
     double x_m = 0.0;
     double y_m = 0.0;
   };
-  void keep_nearest(const Candidate& candidate);
+  struct ColumnState {
+    int obstacle_points = 0;  // entries used in this column's slice of nearest_
+    bool has_floor = false;
+    Candidate farthest_floor;
+  };
+  void reset_columns();
+  void add_point(int column, const Eigen::Vector3d& point, const Eigen::Vector3d& origin);
+  void keep_nearest(ColumnState& state, Candidate* nearest, const Candidate& candidate) const;
 
   ObstacleScanParams params_;
   StereoCalibration calibration_;
   core::CameraMount mount_;
-  core::FixedVector<Candidate> nearest_;  // the min_obstacle_pixels nearest obstacle points, sorted
+  std::size_t per_column_;                 // min_obstacle_pixels
+  std::vector<ColumnState> columns_;       // one per image column, sized at construction
+  std::vector<Candidate> nearest_;         // per column: its nearest obstacle points, sorted
 };
 
 }  // namespace stereoscout::vision
