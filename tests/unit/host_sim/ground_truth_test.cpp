@@ -77,6 +77,20 @@ TEST(GroundTruth, LabRoomsAreJoinedByTheWideDoorOnly) {
   EXPECT_LT(reachable_m2, 19.0 * 16.5);
 }
 
+TEST(GroundTruth, ShippedWorldsStartTheRobotInReachableFreeSpace) {
+  for (const char* name : {"lab", "office", "clutter"}) {
+    const WorldLoad load = load_world(source_path(std::string("config/worlds/") + name + ".yaml"));
+    ASSERT_TRUE(load.ok()) << load.error_text();
+    const GroundTruthGrid grid = rasterize_world(load.world, 0.1, kFloorTolerance, kRobotHeight);
+    const GroundTruthGrid reachable = reachable_free_space(grid, load.world.start.translation(), kRobotRadius);
+    EXPECT_GT(reachable.count(GroundTruthGrid::free), 1000U) << name;
+    for (std::size_t i = 0; i < load.world.people.size(); ++i) {
+      const double clearance = (load.world.person_position(i, 0.0) - load.world.start.translation()).norm();
+      EXPECT_GT(clearance, kRobotRadius + load.world.people[i].radius) << name << " person " << i;
+    }
+  }
+}
+
 TEST(GroundTruth, MapServerFiles) {
   const World world = two_rooms(1.0);
   const GroundTruthGrid grid = rasterize_world(world, 0.1, kFloorTolerance, kRobotHeight);
