@@ -11,6 +11,7 @@ namespace {
 constexpr Command kCommands[] = {
     {"config", "check a config file, print the effective config or the key reference", run_config},
     {"landmark-slam", "run the landmark filter on one robot of a UTIAS MRCLAM dataset and score its map", run_landmark_slam},
+    {"slam", "run the stereo front end and the filter on a KITTI odometry folder and score the trajectory", run_slam},
     {"sim-render", "render the simulated stereo pair and ground-truth depth seen from a pose", run_sim_render},
     {"world-map", "write the ground-truth occupancy map and reachable free space of a world", run_world_map},
     {"eval-disparity", "dense disparity of a rectified pair scored against ground truth (JSON)", run_eval_disparity},

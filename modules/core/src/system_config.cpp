@@ -26,6 +26,7 @@ void describe(ConfigVisitor& visitor, SystemConfig& config) {
   describe(visitor, config.budgets);
   describe(visitor, config.sim);
   describe(visitor, config.robot_pc);
+  describe(visitor, config.dataset);
 }
 
 std::string SystemConfigLoad::error_text() const {

@@ -8,6 +8,7 @@
 #include "stereoscout/core/config.hpp"
 #include "stereoscout/core/config/budgets.hpp"
 #include "stereoscout/core/config/camera.hpp"
+#include "stereoscout/core/config/dataset.hpp"
 #include "stereoscout/core/config/explore.hpp"
 #include "stereoscout/core/config/filter.hpp"
 #include "stereoscout/core/config/grid.hpp"
@@ -30,6 +31,7 @@ struct SystemConfig {
   BudgetsConfig budgets;
   SimConfig sim;
   RobotPcConfig robot_pc;
+  DatasetConfig dataset;
 };
 
 void describe(ConfigVisitor& visitor, SystemConfig& config);

@@ -1,0 +1,46 @@
+#include "stereoscout/host_dataset/dataset_odometry.hpp"
+
+#include <cmath>
+#include <utility>
+
+#include "stereoscout/core/check.hpp"
+
+namespace stereoscout::host_dataset {
+
+core::Pose2 corrupt_motion(const core::Pose2& delta, const core::OdometryNoiseConfig& noise, core::RandomStream& random) {
+  const double distance = std::hypot(delta.x, delta.y);
+  const double turned = std::abs(delta.theta);
+  // Random walk: the variances grow linearly with distance and turned angle.
+  const double distance_sigma = noise.translation_sigma_m_per_sqrt_m * std::sqrt(distance);
+  const double rotation_sigma =
+      std::sqrt(noise.rotation_sigma_rad_per_sqrt_rad * noise.rotation_sigma_rad_per_sqrt_rad * turned +
+                noise.rotation_sigma_rad_per_sqrt_m * noise.rotation_sigma_rad_per_sqrt_m * distance);
+  const double measured_distance = distance * (1.0 + noise.scale_error) + distance_sigma * random.gaussian();
+  const double measured_rotation =
+      delta.theta + core::degrees_to_radians(noise.drift_deg_per_m) * distance + rotation_sigma * random.gaussian();
+  const double scale = distance > 0.0 ? measured_distance / distance : 0.0;
+  return core::Pose2{delta.x * scale, delta.y * scale, core::wrap_angle(measured_rotation)};
+}
+
+DatasetOdometry::DatasetOdometry(std::vector<core::Pose2> truth, std::vector<double> times_s,
+                                 const core::OdometryNoiseConfig& noise, std::uint64_t seed)
+    : truth_(std::move(truth)), times_s_(std::move(times_s)), noise_(noise), seed_(seed) {
+  STEREOSCOUT_CHECK(truth_.size() == times_s_.size(), "one true pose per frame time");
+  if (!truth_.empty()) pose_ = truth_.front();
+}
+
+core::Status DatasetOdometry::read(core::OdometryReading& reading) {
+  if (next_ >= truth_.size()) return {core::StatusCode::not_available, "dataset odometry finished"};
+  const std::size_t frame = next_++;
+  if (frame > 0) {
+    const core::Pose2 delta = truth_[frame - 1].between(truth_[frame]);
+    core::RandomStream random(seed_, {core::stream_purpose::dataset_odometry, static_cast<std::uint32_t>(frame), 0});
+    pose_ = pose_.compose(corrupt_motion(delta, noise_, random));
+  }
+  reading.timestamp_ns = static_cast<std::int64_t>(std::llround(times_s_[frame] * 1e9));
+  reading.sequence = frame;
+  reading.pose = pose_;
+  return core::Status::success();
+}
+
+}  // namespace stereoscout::host_dataset
