@@ -25,6 +25,7 @@ std::string resolve_data_path(const std::string& path);
 
 int run_config(int argc, char** argv);
 int run_eval_disparity(int argc, char** argv);
+int run_eval_map(int argc, char** argv);
 int run_landmark_slam(int argc, char** argv);
 int run_slam(int argc, char** argv);
 int run_sim_render(int argc, char** argv);
