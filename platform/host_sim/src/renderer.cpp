@@ -10,7 +10,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "stereoscout/core/check.hpp"
 #include "stereoscout/core/random.hpp"
@@ -38,6 +37,11 @@ struct Shading {
     return static_cast<std::uint8_t>(std::clamp(value, 0.0F, 255.0F));
   }
 };
+
+bool same_surface(const Surface& a, const Surface& b) {
+  return a.texture == b.texture && a.brightness == b.brightness && a.contrast == b.contrast &&
+         a.texture_offset_u_m == b.texture_offset_u_m && a.texture_offset_v_m == b.texture_offset_v_m;
+}
 
 }  // namespace
 
@@ -86,21 +90,45 @@ StereoRenderer::StereoRenderer(const World& world, const core::CameraConfig& cam
   const Eigen::Vector2d extent = world.bounds_max() + Eigen::Vector2d::Constant(1.0) - raster_origin_;
   raster_width_ = static_cast<int>(std::ceil(extent.x() / kFloorRasterCell_m));
   raster_height_ = static_cast<int>(std::ceil(extent.y() / kFloorRasterCell_m));
-  raster_region_.resize(static_cast<std::size_t>(raster_width_) * static_cast<std::size_t>(raster_height_));
-  raster_gain_.resize(raster_region_.size());
-  floor_surfaces_.push_back(world.floor);
-  for (const FloorRegion& region : world.floor_regions) floor_surfaces_.push_back(region.surface);
+  raster_gain_.resize(static_cast<std::size_t>(raster_width_) * static_cast<std::size_t>(raster_height_));
+  raster_look_.resize(raster_gain_.size());
   for (int iy = 0; iy < raster_height_; ++iy) {
     for (int ix = 0; ix < raster_width_; ++ix) {
       const Eigen::Vector2d point = raster_origin_ + kFloorRasterCell_m * Eigen::Vector2d(ix + 0.5, iy + 0.5);
-      std::uint8_t region = 0;
-      for (std::size_t i = 0; i < world.floor_regions.size() && i < 254; ++i) {
-        if (polygon_contains(world.floor_regions[i].polygon, point)) region = static_cast<std::uint8_t>(i + 1);
+      const Surface* surface = &world.floor;
+      for (const FloorRegion& region : world.floor_regions) {
+        if (polygon_contains(region.polygon, point)) surface = &region.surface;
       }
+      const auto gain = static_cast<float>(world.light_gain_at(point));
       const std::size_t index = static_cast<std::size_t>(iy) * static_cast<std::size_t>(raster_width_) + static_cast<std::size_t>(ix);
-      raster_region_[index] = region;
-      raster_gain_[index] = static_cast<float>(world.light_gain_at(point));
+      raster_gain_[index] = gain;
+      std::size_t look = 0;
+      while (look < floor_looks_.size() &&
+             !(same_surface(floor_looks_[look].surface, *surface) && floor_looks_[look].gain == gain)) {
+        ++look;
+      }
+      if (look == floor_looks_.size() && look < 255) {
+        const Shading shading(*surface, gain, static_cast<float>(sim.exposure));
+        floor_looks_.push_back({*surface, gain, shading.scale, shading.offset});
+      }
+      raster_look_[index] = static_cast<std::uint8_t>(std::min<std::size_t>(look, floor_looks_.size() - 1));
     }
+  }
+  // Per-row depth of the floor and the ceiling, and the mip level for the pixel's footprint
+  // (seen at a slant, a pixel covers Z/f across and Z^2/(f h) along the ray; use their mean).
+  floor_row_depth_.assign(height, 0.0F);
+  ceiling_row_depth_.assign(height, 0.0F);
+  floor_row_level_.assign(height, 0);
+  ceiling_row_level_.assign(height, 0);
+  for (std::size_t r = 0; r < height; ++r) {
+    const double offset = static_cast<double>(r) - camera.principal_y_px;
+    const double drop = offset > 0.0 ? height_m_ : height_m_ - world.ceiling_height;
+    if (offset == 0.0 || drop * offset <= 0.0) continue;
+    const double z_depth = camera.focal_px * drop / offset;
+    const double footprint = z_depth / camera.focal_px * std::sqrt(std::max(1.0, z_depth / std::abs(drop)));
+    const auto level = static_cast<std::uint8_t>(TextureBank::level_for_footprint(footprint));
+    (offset > 0.0 ? floor_row_depth_ : ceiling_row_depth_)[r] = static_cast<float>(z_depth);
+    (offset > 0.0 ? floor_row_level_ : ceiling_row_level_)[r] = level;
   }
   // Sensor noise: a table of Gaussian gray-level offsets read from a random start per row.
   noise_table_.resize(kNoiseTableSize + width);
@@ -122,16 +150,10 @@ StereoRenderer::CameraPlacement StereoRenderer::place_camera(const core::Pose2& 
           robot_pose.theta + pan_rad};
 }
 
-std::uint8_t StereoRenderer::floor_region_at(double x, double y) const {
-  const int ix = std::clamp(static_cast<int>((x - raster_origin_.x()) / kFloorRasterCell_m), 0, raster_width_ - 1);
-  const int iy = std::clamp(static_cast<int>((y - raster_origin_.y()) / kFloorRasterCell_m), 0, raster_height_ - 1);
-  return raster_region_[static_cast<std::size_t>(iy) * static_cast<std::size_t>(raster_width_) + static_cast<std::size_t>(ix)];
-}
-
-float StereoRenderer::floor_gain_at(double x, double y) const {
-  const int ix = std::clamp(static_cast<int>((x - raster_origin_.x()) / kFloorRasterCell_m), 0, raster_width_ - 1);
-  const int iy = std::clamp(static_cast<int>((y - raster_origin_.y()) / kFloorRasterCell_m), 0, raster_height_ - 1);
-  return raster_gain_[static_cast<std::size_t>(iy) * static_cast<std::size_t>(raster_width_) + static_cast<std::size_t>(ix)];
+std::size_t StereoRenderer::raster_index(double x, double y) const {
+  const int ix = std::clamp(static_cast<int>((x - raster_origin_.x()) * (1.0 / kFloorRasterCell_m)), 0, raster_width_ - 1);
+  const int iy = std::clamp(static_cast<int>((y - raster_origin_.y()) * (1.0 / kFloorRasterCell_m)), 0, raster_height_ - 1);
+  return static_cast<std::size_t>(iy) * static_cast<std::size_t>(raster_width_) + static_cast<std::size_t>(ix);
 }
 
 void StereoRenderer::push_hit(const Hit& hit) {
@@ -266,7 +288,7 @@ void StereoRenderer::fill_vertical(const Hit& hit, std::uint8_t* pixels, float* 
 
 void StereoRenderer::fill_horizontal(float plane_z, float from_depth, float to_depth, const Surface& surface, float gain,
                                      const Eigen::Vector2d& center, const Eigen::Vector2d& direction,
-                                     std::uint8_t* pixels, float* depth, bool floor_regions) {
+                                     std::uint8_t* pixels, float* depth) {
   const double f = camera_.focal_px;
   const double cy = camera_.principal_y_px;
   const double drop = height_m_ - plane_z;  // > 0: plane below the camera, seen below the horizon
@@ -277,19 +299,17 @@ void StereoRenderer::fill_horizontal(float plane_z, float from_depth, float to_d
   int r1 = static_cast<int>(std::floor(std::max(row_a, row_b)));
   r0 = std::max(r0, 0);
   r1 = std::min(r1, camera_.height_px - 1);
-  const float exposure = static_cast<float>(sim_.exposure);
+  const Shading shading(surface, gain, static_cast<float>(sim_.exposure));
   for (int r = r0; r <= r1; ++r) {
     const double offset = r - cy;
     if (row_done_[static_cast<std::size_t>(r)] != 0 || offset * drop <= 0.0) continue;
     const double z_depth = f * drop / offset;
     const Eigen::Vector2d point = center + z_depth * direction;
-    const Surface& shown = floor_regions ? floor_surfaces_[floor_region_at(point.x(), point.y())] : surface;
-    const float shown_gain = floor_regions ? floor_gain_at(point.x(), point.y()) : gain;
     // Seen at a slant, a pixel covers Z/f across and Z^2/(f h) along the ray; use their mean.
     const double footprint = z_depth / f * std::sqrt(std::max(1.0, z_depth / std::abs(drop)));
-    const TextureBank::Level& level = textures_.level(shown.texture, TextureBank::level_for_footprint(footprint));
-    const std::uint8_t texel = TextureBank::sample(level, point.x() + shown.texture_offset_u_m, point.y() + shown.texture_offset_v_m);
-    pixels[r] = Shading(shown, shown_gain, exposure)(texel);
+    const TextureBank::Level& level = textures_.level(surface.texture, TextureBank::level_for_footprint(footprint));
+    const std::uint8_t texel = TextureBank::sample(level, point.x() + surface.texture_offset_u_m, point.y() + surface.texture_offset_v_m);
+    pixels[r] = shading(texel);
     depth[r] = static_cast<float>(z_depth);
     row_done_[static_cast<std::size_t>(r)] = 1;
   }
@@ -303,19 +323,40 @@ void StereoRenderer::shade_column(const Eigen::Vector2d& center, const Eigen::Ve
     const Hit& hit = hits_[i];
     fill_vertical(hit, pixels, depth);
     if (hit.solid && hit.z_max < height_m_) {
-      fill_horizontal(hit.z_max, hit.depth_in, hit.depth_out, *hit.surface, hit.gain, center, direction, pixels, depth, false);
+      fill_horizontal(hit.z_max, hit.depth_in, hit.depth_out, *hit.surface, hit.gain, center, direction, pixels, depth);
     }
     if (hit.solid && hit.z_min > height_m_) {
-      fill_horizontal(hit.z_min, hit.depth_in, hit.depth_out, *hit.surface, hit.gain, center, direction, pixels, depth, false);
+      fill_horizontal(hit.z_min, hit.depth_in, hit.depth_out, *hit.surface, hit.gain, center, direction, pixels, depth);
     }
     // A floor-to-ceiling surface hides everything behind it.
     if (hit.z_min <= 0.0F && hit.z_max >= ceiling) break;
   }
-  const auto infinity = std::numeric_limits<float>::infinity();
-  fill_horizontal(0.0F, static_cast<float>(kNearClip_m), infinity, world_.floor, 1.0F, center, direction, pixels, depth, true);
-  fill_horizontal(ceiling, static_cast<float>(kNearClip_m), infinity, world_.ceiling, 1.0F, center, direction, pixels, depth, false);
+  fill_floor_and_ceiling(center, direction, pixels, depth);
+}
+
+void StereoRenderer::fill_floor_and_ceiling(const Eigen::Vector2d& center, const Eigen::Vector2d& direction,
+                                            std::uint8_t* pixels, float* depth) {
+  const Surface& ceiling = world_.ceiling;
+  const Shading ceiling_shading(ceiling, 1.0F, static_cast<float>(sim_.exposure));
   for (std::size_t r = 0; r < row_done_.size(); ++r) {
-    if (row_done_[r] == 0) {  // exactly on the horizon of an open world: nothing there
+    if (row_done_[r] != 0) continue;
+    const float floor_depth = floor_row_depth_[r];
+    if (floor_depth > 0.0F) {
+      const Eigen::Vector2d point = center + static_cast<double>(floor_depth) * direction;
+      const FloorLook& look = floor_looks_[raster_look_[raster_index(point.x(), point.y())]];
+      const TextureBank::Level& level = textures_.level(look.surface.texture, floor_row_level_[r]);
+      const std::uint8_t texel =
+          TextureBank::sample(level, point.x() + look.surface.texture_offset_u_m, point.y() + look.surface.texture_offset_v_m);
+      const float value = look.scale * static_cast<float>(texel) + look.offset + 0.5F;
+      pixels[r] = static_cast<std::uint8_t>(std::clamp(value, 0.0F, 255.0F));
+      depth[r] = floor_depth;
+    } else if (ceiling_row_depth_[r] > 0.0F) {
+      const Eigen::Vector2d point = center + static_cast<double>(ceiling_row_depth_[r]) * direction;
+      const TextureBank::Level& level = textures_.level(ceiling.texture, ceiling_row_level_[r]);
+      pixels[r] = ceiling_shading(
+          TextureBank::sample(level, point.x() + ceiling.texture_offset_u_m, point.y() + ceiling.texture_offset_v_m));
+      depth[r] = ceiling_row_depth_[r];
+    } else {  // exactly on the horizon: nothing there
       pixels[r] = 0;
       depth[r] = 0.0F;
     }

@@ -76,11 +76,13 @@ class StereoRenderer {
   void fill_vertical(const Hit& hit, std::uint8_t* pixels, float* depth);
   void fill_horizontal(float plane_z, float from_depth, float to_depth, const Surface& surface, float gain,
                        const Eigen::Vector2d& center, const Eigen::Vector2d& direction, std::uint8_t* pixels,
-                       float* depth, bool floor_regions);
+                       float* depth);
+  void fill_floor_and_ceiling(const Eigen::Vector2d& center, const Eigen::Vector2d& direction, std::uint8_t* pixels,
+                              float* depth);
   void render_view(const Eigen::Vector2d& center, double heading, cv::Mat& image_transposed, cv::Mat* depth_transposed);
   void add_noise(cv::Mat& image, std::uint32_t frame_index, std::uint32_t camera_index);
-  std::uint8_t floor_region_at(double x, double y) const;
-  float floor_gain_at(double x, double y) const;
+  std::size_t raster_index(double x, double y) const;
+  float floor_gain_at(double x, double y) const { return raster_gain_[raster_index(x, y)]; }
 
   const World& world_;
   core::CameraConfig camera_;
@@ -92,9 +94,22 @@ class StereoRenderer {
   Eigen::Vector2d raster_origin_;
   int raster_width_ = 0;
   int raster_height_ = 0;
-  std::vector<std::uint8_t> raster_region_;
   std::vector<float> raster_gain_;
-  std::vector<Surface> floor_surfaces_;  // [0] = the default floor, [i + 1] = region i
+  std::vector<std::uint8_t> raster_look_;  // index into floor_looks_
+  // Each distinct (floor region, light gain) of the raster: its surface and gray-level map.
+  struct FloorLook {
+    Surface surface;
+    float gain = 1.0F;
+    float scale = 1.0F;
+    float offset = 0.0F;
+  };
+  std::vector<FloorLook> floor_looks_;
+  // The floor and the ceiling are at a fixed depth per image row (untilted camera): depth
+  // (0 where the row does not see that plane) and texture mip level per row.
+  std::vector<float> floor_row_depth_;
+  std::vector<float> ceiling_row_depth_;
+  std::vector<std::uint8_t> floor_row_level_;
+  std::vector<std::uint8_t> ceiling_row_level_;
   // Per-column working set, sized once.
   std::vector<Hit> hits_;
   std::size_t hit_count_ = 0;
