@@ -107,19 +107,26 @@ core::Status StereoCapture::capture_pair(core::StereoFrame& frame) {
     }
     const bool converted = extract_luma(left_.pending, left_.format, 0, frame.left) &&
                             extract_luma(right_.pending, right_.format, 0, frame.right);
-    frame.timestamp_ns = right_.pending.timestamp_ns;  // the right image is the reference
+    const std::int64_t timestamp_ns = right_.pending.timestamp_ns;  // the right image is the reference
     drop_pending(left_);
     drop_pending(right_);
-    if (!converted) {
-      ++stats_.bad_frames;
-      continue;
+    if (finish_pair(converted, timestamp_ns, frame)) {
+      return core::Status::success();
     }
-    frame.sequence = pair_sequence_++;
-    frame.pan_rad = 0.0;
-    last_pair_ns_ = clock_.now_ns();
-    ++stats_.pairs;
-    return core::Status::success();
   }
+}
+
+bool StereoCapture::finish_pair(bool converted, std::int64_t timestamp_ns, core::StereoFrame& frame) {
+  if (!converted) {
+    ++stats_.bad_frames;
+    return false;
+  }
+  frame.timestamp_ns = timestamp_ns;
+  frame.sequence = pair_sequence_++;
+  frame.pan_rad = 0.0;
+  last_pair_ns_ = clock_.now_ns();
+  ++stats_.pairs;
+  return true;
 }
 
 core::Status StereoCapture::capture_side_by_side(core::StereoFrame& frame) {
@@ -129,17 +136,11 @@ core::Status StereoCapture::capture_side_by_side(core::StereoFrame& frame) {
     }
     const bool converted = extract_luma(left_.pending, left_.format, 0, frame.left) &&
                            extract_luma(left_.pending, left_.format, options_.width_px, frame.right);
-    frame.timestamp_ns = left_.pending.timestamp_ns;
+    const std::int64_t timestamp_ns = left_.pending.timestamp_ns;
     drop_pending(left_);
-    if (!converted) {
-      ++stats_.bad_frames;
-      continue;
+    if (finish_pair(converted, timestamp_ns, frame)) {
+      return core::Status::success();
     }
-    frame.sequence = pair_sequence_++;
-    frame.pan_rad = 0.0;
-    last_pair_ns_ = clock_.now_ns();
-    ++stats_.pairs;
-    return core::Status::success();
   }
 }
 

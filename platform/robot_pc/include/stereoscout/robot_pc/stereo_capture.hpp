@@ -66,6 +66,8 @@ class StereoCapture final : public platform::Camera {
   core::Status capture_pair(core::StereoFrame& frame);
   core::Status capture_side_by_side(core::StereoFrame& frame);
   core::Status no_pair_yet();
+  // Counts a converted pair and stamps it; false (counted as a bad frame) if conversion failed.
+  bool finish_pair(bool converted, std::int64_t timestamp_ns, core::StereoFrame& frame);
   void count_sequence(Side& side, std::uint32_t sequence);
 
   Side left_;
