@@ -138,10 +138,24 @@ TEST(Renderer, LabViewHasHundredsOfSiftKeypointsAndABlankRoomAlmostNone) {
 }
 
 TEST(Renderer, EveryTexturedSurfaceGivesKeypoints) {
-  for (const char* texture : {"poster", "books", "brick", "wood", "noise"}) {
-    const World world = load_or_fail(room_yaml(texture, "blank", "blank"));
-    const Pair view = render(world, core::Pose2{7.5, 3.0, 0.0});  // wall 2.4 m ahead fills the image
-    EXPECT_GE(sift_keypoints(view.right).size(), 100U) << texture;
+  // One blank 10 m x 6 m room per texture, side by side along x; each room's east wall has
+  // the texture and fills the view from 2.4 m.
+  const char* textures[] = {"poster", "books", "brick", "wood", "noise"};
+  std::string yaml = "start: [1, 1, 0]\nfloor: {texture: blank}\nceiling: {texture: blank}\nwalls:\n";
+  for (int i = 0; i < 5; ++i) {
+    const std::string x0 = std::to_string(10 * i);
+    const std::string x1 = std::to_string(10 * i + 10);
+    yaml += "  - {points: [[" + x1 + ", 6], [" + x0 + ", 6], [" + x0 + ", 0], [" + x1 + ", 0]], texture: blank}\n";
+    yaml += "  - {points: [[" + x1 + ", 0], [" + x1 + ", 6]], texture: " + textures[i] + ", brightness: 0.5, contrast: 0.8}\n";
+  }
+  const World world = load_or_fail(yaml);
+  const core::CameraConfig camera;
+  StereoRenderer renderer(world, camera, core::SimConfig{}, 1);
+  cv::Mat left(camera.height_px, camera.width_px, CV_8UC1);
+  cv::Mat right(camera.height_px, camera.width_px, CV_8UC1);
+  for (int i = 0; i < 5; ++i) {
+    renderer.render(core::Pose2{10.0 * i + 7.5, 3.0, 0.0}, 0.0, 0.0, 0, left, right);
+    EXPECT_GE(sift_keypoints(right).size(), 100U) << textures[i];
   }
 }
 
