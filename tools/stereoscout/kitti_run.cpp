@@ -2,7 +2,9 @@
 // reading, one filter update; then the exported files and the scores.
 #include "kitti_run.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <map>
 #include <memory>
 #include <sstream>
