@@ -44,7 +44,7 @@ struct Scenario {
   std::vector<core::LandmarkObservation> observations;
 };
 
-Scenario make_scenario(std::size_t landmarks) {
+Scenario make_scenario(std::size_t landmarks, std::uint32_t draw = 0) {
   Scenario scenario;
   for (std::uint32_t id = 0; id < landmarks; ++id) {
     PriorLandmark p;
@@ -54,7 +54,7 @@ Scenario make_scenario(std::size_t landmarks) {
     p.estimate.observations = 4;
     scenario.prior.push_back(p);
   }
-  core::RandomStream pick(5, {core::stream_purpose::test, 0, 1});
+  core::RandomStream pick(5, {core::stream_purpose::test, draw, 1});
   std::vector<std::uint32_t> ids(landmarks);
   for (std::uint32_t id = 0; id < landmarks; ++id) {
     ids[id] = id;
@@ -111,6 +111,57 @@ BENCHMARK(BM_ObservationUpdate)
     ->ArgsProduct({{100, 1000, 2000, 5000}, {1000, 10000, 20000}})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(3);
+
+// A run in progress: consecutive updates, each with 200 observations of a new random subset of
+// the K landmarks, motion noise on and systematic resampling whenever ESS < N / 2, starting from
+// one shared map. The time is for all 10 updates; counters: what the trees hold at the end.
+void BM_ConsecutiveUpdates(benchmark::State& state) {
+  const auto particles = static_cast<std::size_t>(state.range(0));
+  const auto landmarks = static_cast<std::size_t>(state.range(1));
+  constexpr std::uint32_t kUpdates = 10;
+  std::vector<Scenario> batches;
+  std::vector<core::Pose2> poses;  // the robot drives 0.1 m and turns 0.02 rad per update
+  for (std::uint32_t u = 0; u < kUpdates; ++u) {
+    poses.push_back(core::Pose2{0.1 * (u + 1), 0.0, 0.02 * (u + 1)});
+    batches.push_back(make_scenario(landmarks, u + 1));
+    const Eigen::Isometry3d robot_from_map = poses.back().to_isometry3().inverse();
+    for (core::LandmarkObservation& o : batches.back().observations) {
+      o.point_camera = robot_from_map * o.point_camera;
+    }
+  }
+  core::FilterConfig config;
+  config.particles = static_cast<int>(particles);
+  config.particle_capacity = config.particles;
+  config.landmark_node_capacity =
+      static_cast<int>(2 * landmarks + kUpdates * particles * path_nodes_per_update(landmarks) + 1000);
+  config.landmark_estimate_capacity = static_cast<int>(landmarks + kUpdates * particles * kObservationsPerUpdate + 1000);
+  config.trajectory_node_capacity = static_cast<int>((kUpdates + 2) * particles + 10);
+  ParticleFilter filter(config, core::CameraMount{}, 1);
+  std::size_t nodes_held = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    filter.start(core::OdometryReading{}, {}, batches[0].prior.data(), batches[0].prior.size());
+    state.ResumeTiming();
+    for (std::uint32_t u = 0; u < kUpdates; ++u) {
+      const Scenario& batch = batches[u];
+      const core::OdometryReading odometry{u + 1, u + 1, poses[u]};
+      filter.update(odometry, ObservationList{batch.observations.data(), batch.observations.size()},
+                    Eigen::Isometry3d::Identity());
+    }
+    state.PauseTiming();
+    nodes_held = filter.landmarks().nodes_in_use();
+    state.ResumeTiming();
+  }
+  state.counters["updates"] = kUpdates;  // the time shown is for all of them
+  state.counters["nodes_held"] = static_cast<double>(nodes_held);
+  state.counters["resamplings"] = static_cast<double>(filter.counters().resamplings);
+  state.counters["refused"] = static_cast<double>(filter.counters().changes_refused_pool_full);
+}
+BENCHMARK(BM_ConsecutiveUpdates)
+    ->Args({1000, 10000})
+    ->Args({2000, 10000})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(2);
 
 // The baseline: every particle owns a flat array of K estimates; resampling copies N of them.
 void BM_CopyWholeMapResample(benchmark::State& state) {
