@@ -35,6 +35,10 @@ const OccupancyGrid* JustInTimeGrid::ml_grid() const {
 
 void JustInTimeGrid::update(slam::TrajectoryNodeHandle ml_node, const slam::TrajectoryNodeHandle* live_nodes,
                             std::size_t live_count) {
+  if (!ml_node || !tree_.is_live(ml_node)) {
+    ++stats_.updates_skipped_no_ml_node;  // e.g. before the filter started: nothing to bring forward
+    return;
+  }
   ++stats_.updates;
   count_dependents(live_nodes, live_count);
   const std::uint32_t existing = tree_.get(ml_node).user_slot;

@@ -193,6 +193,9 @@ TEST(JustInTimeGrid, UpdateDoesNotTouchTheHeap) {
   }
   EXPECT_EQ(allocations, 0u);
   EXPECT_GT(cache.stats().copies, 0u);
+  cache.update({}, driver.nodes(), driver.count());
+  EXPECT_EQ(cache.stats().updates_skipped_no_ml_node, 1u);
+  EXPECT_NE(cache.ml_grid(), nullptr);
 }
 
 // 1000 particles whose log-likelihoods score their distance to the true path (sigma 1 cm),

@@ -53,6 +53,7 @@ struct JustInTimeGridStats {
   std::uint64_t dependents_walk_steps = 0;      // parent links followed, summed
   std::uint64_t dependents_walk_steps_max = 0;  // in one update
   std::uint64_t dependents_unresolved = 0;      // live nodes with no grid within the bound
+  std::uint64_t updates_skipped_no_ml_node = 0;  // update() with a null or dead ML node
 
   double mean_grids_held() const {
     return updates == 0 ? 0.0 : static_cast<double>(grids_held_sum) / static_cast<double>(updates);
@@ -73,7 +74,9 @@ class JustInTimeGrid {
   JustInTimeGrid(const JustInTimeGrid&) = delete;
   JustInTimeGrid& operator=(const JustInTimeGrid&) = delete;
 
-  // The scan of filter update `update_index` (the update_index of that update's nodes).
+  // The scan of filter update `update_index` (the update_index of that update's nodes), before
+  // update() for that update. Indices must increase; a repeated or older one is refused and
+  // counted (scans().counts().out_of_order).
   void record_scan(std::uint32_t update_index, const core::DepthScan& scan) { scans_.record(update_index, scan); }
 
   // Brings the grid of `ml_node` up to date and frees grids nobody can need. `live_nodes`
