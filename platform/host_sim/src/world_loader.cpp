@@ -207,16 +207,16 @@ class WorldParser {
 
   // Iterates a top-level list of maps, calling `item(node, path)` for each.
   template <class Item>
-  void each(const cv::FileNode& root, const char* key, Item item) {
+  void each(const cv::FileNode& root, const std::string& parent, const char* key, Item item) {
     const cv::FileNode list = root[key];
     if (list.empty() || list.isNone()) return;
     if (!list.isSeq()) {
-      error(key, "expected a list, got " + describe_node(list));
+      error(join(parent, key), "expected a list, got " + describe_node(list));
       return;
     }
     for (std::size_t i = 0; i < list.size(); ++i) {
       const cv::FileNode node = list[static_cast<int>(i)];
-      const std::string path = std::string(key) + "[" + std::to_string(i) + "]";
+      const std::string path = join(parent, key) + "[" + std::to_string(i) + "]";
       if (!node.isMap()) {
         error(path, "expected a map of keys, got " + describe_node(node));
         continue;
@@ -294,7 +294,7 @@ void add_wall_segment(World& world, const WallPiece& prototype, const Eigen::Vec
 }
 
 void read_walls(WorldParser& parser, const cv::FileNode& root, World& world) {
-  parser.each(root, "walls", [&](const cv::FileNode& node, const std::string& path) {
+  parser.each(root, "", "walls", [&](const cv::FileNode& node, const std::string& path) {
     parser.check_keys(node, path, {"points", "height", "openings"}, true);
     Points points;
     WallPiece prototype;
@@ -303,8 +303,7 @@ void read_walls(WorldParser& parser, const cv::FileNode& root, World& world) {
     parser.surface(node, path, prototype.surface);
     if (!parser.point_list(node, path, "points", points, 2)) return;
     std::vector<Opening> openings;
-    parser.each(node, "openings", [&](const cv::FileNode& o, const std::string& opening_path_tail) {
-      const std::string opening_path = path + "." + opening_path_tail;
+    parser.each(node, path, "openings", [&](const cv::FileNode& o, const std::string& opening_path) {
       parser.check_keys(o, opening_path, {"at", "width", "bottom", "top", "kind", "brightness"}, false);
       Opening opening;
       std::string kind = "door";
@@ -335,7 +334,7 @@ void read_walls(WorldParser& parser, const cv::FileNode& root, World& world) {
 }
 
 void read_solids(WorldParser& parser, const cv::FileNode& root, World& world) {
-  parser.each(root, "prisms", [&](const cv::FileNode& node, const std::string& path) {
+  parser.each(root, "", "prisms", [&](const cv::FileNode& node, const std::string& path) {
     parser.check_keys(node, path, {"polygon", "z"}, true);
     Prism prism;
     parser.surface(node, path, prism.surface);
@@ -343,7 +342,7 @@ void read_solids(WorldParser& parser, const cv::FileNode& root, World& world) {
       world.prisms.push_back(prism);
     }
   });
-  parser.each(root, "boxes", [&](const cv::FileNode& node, const std::string& path) {
+  parser.each(root, "", "boxes", [&](const cv::FileNode& node, const std::string& path) {
     parser.check_keys(node, path, {"center", "size", "yaw_deg", "z"}, true);
     Prism prism;
     Eigen::Vector2d center;
@@ -367,7 +366,7 @@ void read_solids(WorldParser& parser, const cv::FileNode& root, World& world) {
     }
     world.prisms.push_back(prism);
   });
-  parser.each(root, "cylinders", [&](const cv::FileNode& node, const std::string& path) {
+  parser.each(root, "", "cylinders", [&](const cv::FileNode& node, const std::string& path) {
     parser.check_keys(node, path, {"center", "radius", "z"}, true);
     Cylinder cylinder;
     parser.surface(node, path, cylinder.surface);
@@ -380,7 +379,7 @@ void read_solids(WorldParser& parser, const cv::FileNode& root, World& world) {
 }
 
 void read_people_and_regions(WorldParser& parser, const cv::FileNode& root, World& world) {
-  parser.each(root, "people", [&](const cv::FileNode& node, const std::string& path) {
+  parser.each(root, "", "people", [&](const cv::FileNode& node, const std::string& path) {
     parser.check_keys(node, path, {"waypoints", "speed", "radius", "height"}, true);
     Person person;
     parser.surface(node, path, person.surface);
@@ -389,7 +388,7 @@ void read_people_and_regions(WorldParser& parser, const cv::FileNode& root, Worl
     parser.number(node, path, "height", person.height, 0.1, 3.0, false);
     if (parser.point_list(node, path, "waypoints", person.waypoints, 1)) world.people.push_back(person);
   });
-  parser.each(root, "floor_regions", [&](const cv::FileNode& node, const std::string& path) {
+  parser.each(root, "", "floor_regions", [&](const cv::FileNode& node, const std::string& path) {
     parser.check_keys(node, path, {"polygon", "type"}, true);
     FloorRegion region;
     region.surface = world.floor;
@@ -397,7 +396,7 @@ void read_people_and_regions(WorldParser& parser, const cv::FileNode& root, Worl
     parser.surface(node, path, region.surface);
     if (parser.polygon(node, path, "polygon", region.polygon)) world.floor_regions.push_back(region);
   });
-  parser.each(root, "lights", [&](const cv::FileNode& node, const std::string& path) {
+  parser.each(root, "", "lights", [&](const cv::FileNode& node, const std::string& path) {
     parser.check_keys(node, path, {"polygon", "gain"}, false);
     LightRegion light;
     parser.number(node, path, "gain", light.gain, 0.0, 20.0, true);

@@ -75,6 +75,8 @@ TEST(World, UnknownKeyIsRejectedWithFileAndKey) {
   EXPECT_EQ(error, "bad.yaml: cylinders[0].colour: unknown key");
   EXPECT_EQ(first_error(room_yaml("brick") + "gravity: 9.81\n"), "bad.yaml: gravity: unknown key");
   EXPECT_EQ(first_error(room_yaml("brick") + "ceiling_height: 3.0\n"), "bad.yaml: ceiling_height: key given more than once");
+  EXPECT_EQ(first_error("start: [1, 1, 0]\nwalls:\n  - {points: [[0, 0], [4, 0]], openings: [{at: 1, width: 1, hinge: left}]}\n"),
+            "bad.yaml: walls[0].openings[0].hinge: unknown key");
 }
 
 TEST(World, OpenPolygonIsRejected) {
