@@ -24,11 +24,14 @@ function(stereoscout_add_module name)
   stereoscout_target_defaults(${target})
 endfunction()
 
-# stereoscout_add_test(<name> SOURCES ... [DEPENDS ...] [LABELS ...])
+# stereoscout_add_test(<name> SOURCES ... [DEPENDS ...] [LABELS ...] [SLOW <gtest filter>])
 # One GoogleTest executable per module; each TEST becomes its own CTest entry. Tests find
 # the source tree and the data folder through tests/support (stereoscout/test/paths.hpp).
+# SLOW names the tests (a --gtest_filter pattern, e.g. "Renderer.*:VisionFrontEnd.Same*")
+# that take seconds; they get the label `slow` (instead of LABELS), which the emulated arm64
+# run leaves out.
 function(stereoscout_add_test name)
-  cmake_parse_arguments(ARG "" "" "SOURCES;DEPENDS;LABELS" ${ARGN})
+  cmake_parse_arguments(ARG "" "SLOW" "SOURCES;DEPENDS;LABELS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_DEPENDS} GTest::gtest GTest::gtest_main)
   target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests/support/include)
@@ -39,7 +42,17 @@ function(stereoscout_add_test name)
   if(NOT ARG_LABELS)
     set(ARG_LABELS unit)
   endif()
+  set(fast_filter "*")
+  if(ARG_SLOW)
+    set(fast_filter "-${ARG_SLOW}")
+    gtest_discover_tests(${name}
+      TEST_FILTER "${ARG_SLOW}"
+      PROPERTIES LABELS slow
+                 ENVIRONMENT "STEREOSCOUT_DATA_DIR=${STEREOSCOUT_DATA_DIR}"
+      DISCOVERY_TIMEOUT 60)
+  endif()
   gtest_discover_tests(${name}
+    TEST_FILTER "${fast_filter}"
     PROPERTIES LABELS "${ARG_LABELS}"
                ENVIRONMENT "STEREOSCOUT_DATA_DIR=${STEREOSCOUT_DATA_DIR}"
     DISCOVERY_TIMEOUT 60)
