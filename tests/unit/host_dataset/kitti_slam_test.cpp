@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "kitti_test_folder.hpp"
 #include "kitti_run.hpp"
 #include "stereoscout/test/paths.hpp"
 
@@ -71,6 +72,35 @@ TEST(KittiSlam, SameSeedSameTrajectoryBytes) {
   EXPECT_EQ(first.odometry_tum, again.odometry_tum);
   EXPECT_EQ(first.landmarks_ply, again.landmarks_ply);
   EXPECT_EQ(std::count(first.trajectory_tum.begin(), first.trajectory_tum.end(), '\n'), 8);
+}
+
+// Any folder in the layout runs: here a tiny one of blank 80 x 30 images (no features at all)
+// with one pair missing. Every frame is still an update (odometry only), nothing crashes.
+TEST(KittiSlam, FeaturelessAndMissingFramesAreCountedNotFatal) {
+  const host_dataset::test::KittiTestFolder folder(6, 80, 30);
+  std::remove(host_dataset::kitti_image_path(folder.path(), 1, 3).c_str());
+  host_dataset::KittiSequence sequence;
+  std::string error;
+  ASSERT_TRUE(host_dataset::load_kitti_sequence(folder.path(), 0, sequence, error)) << error;
+  RunOptions options = test_options(1);
+  options.dataset.odometry = core::OdometryNoiseConfig{};
+  options.filter.motion_noise_translation_per_m = 0.0;
+  options.filter.motion_noise_rotation_per_rad = 0.0;
+  options.filter.motion_noise_rotation_per_m = 0.0;
+  options.filter.motion_noise_translation_per_rad = 0.0;
+  const RunResult result = run_kitti_slam(sequence, options);
+  EXPECT_EQ(result.frames, 6U);
+  EXPECT_EQ(result.frames_skipped, 1U);
+  EXPECT_EQ(result.frames_without_features, 5U);
+  ASSERT_EQ(result.warnings.size(), 1U);
+  EXPECT_EQ(result.warnings[0].rfind(host_dataset::kitti_image_path(folder.path(), 1, 3), 0), 0U);
+  EXPECT_EQ(result.observations, 0U);
+  EXPECT_EQ(result.landmarks, 0U);
+  // Exact odometry, no proposal noise, no observations: the particles follow the true line.
+  ASSERT_TRUE(result.filter_score && result.odometry_score);
+  EXPECT_NEAR(result.odometry_score->ate_rmse_m, 0.0, 1e-9);
+  EXPECT_NEAR(result.filter_score->ate_rmse_m, 0.0, 1e-9);
+  EXPECT_EQ(std::count(result.groundtruth_tum.begin(), result.groundtruth_tum.end(), '\n'), 6);
 }
 
 }  // namespace
