@@ -82,16 +82,13 @@ void ParticleFilter::start(const core::OdometryReading& odometry, const core::Po
   start(odometry, initial_pose);
   Particle& first = (*particles_)[0];
   for (std::size_t k = 0; k < prior_count; ++k) {
-    const bool fits = [&] {
-      MapNode* leaf = landmarks_.mutable_leaf(first.map, prior[k].landmark_id, 1);
-      if (leaf == nullptr || leaf->estimates.size() >= to_size(config_.estimates_per_landmark)) {
-        return false;
-      }
-      landmarks_.add_estimate(*leaf, prior[k].estimate);
-      return true;
-    }();
-    if (!fits) {
+    MapNode* leaf = landmarks_.mutable_leaf(first.map, prior[k].landmark_id, 1);
+    if (leaf == nullptr) {
       ++counters_.changes_refused_pool_full;
+    } else if (leaf->estimates.size() >= to_size(config_.estimates_per_landmark)) {
+      ++counters_.estimates_refused_list_full;
+    } else {
+      landmarks_.add_estimate(*leaf, prior[k].estimate);
     }
   }
   for (std::size_t slot = 1; slot < particles_->size(); ++slot) {
