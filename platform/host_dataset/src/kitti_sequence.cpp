@@ -91,8 +91,9 @@ bool parse_kitti_times(const std::string& text, const std::string& name, std::ve
       error = located(name, number, "expected one time in seconds");
       return false;
     }
-    if (!times_s.empty() && numbers[0] < times_s.back()) {
-      error = located(name, number, "time goes backwards");
+    // Strictly increasing: a frame's time names its trajectory node in the outputs.
+    if (!times_s.empty() && numbers[0] <= times_s.back()) {
+      error = located(name, number, "time does not increase");
       return false;
     }
     times_s.push_back(numbers[0]);

@@ -43,7 +43,9 @@ TEST(KittiTimes, OneTimePerLineInOrder) {
   EXPECT_FALSE(parse_kitti_times("0\n0.1 0.2\n", "times.txt", times, error));
   EXPECT_EQ(error, "times.txt:2: expected one time in seconds");
   EXPECT_FALSE(parse_kitti_times("0\n0.2\n0.1\n", "times.txt", times, error));
-  EXPECT_EQ(error, "times.txt:3: time goes backwards");
+  EXPECT_EQ(error, "times.txt:3: time does not increase");
+  EXPECT_FALSE(parse_kitti_times("0\n0.2\n0.2\n", "times.txt", times, error));
+  EXPECT_EQ(error, "times.txt:3: time does not increase");
   EXPECT_FALSE(parse_kitti_times("nan\n", "times.txt", times, error));
 }
 

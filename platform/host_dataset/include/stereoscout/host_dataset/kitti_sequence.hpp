@@ -4,7 +4,7 @@
 //   image_0/NNNNNN.png  left camera (cam0), rectified 8-bit grey
 //   image_1/NNNNNN.png  right camera (cam1), same size
 //   calib.txt           "P0: ..." and "P1: ...", 3x4 rectified projections, row-major
-//   times.txt           seconds since the start, one line per frame
+//   times.txt           seconds since the start, one line per frame, increasing
 //   poses.txt           optional ground truth: 3x4 [R|t] row-major per frame, the pose of cam0
 //                       in the world (world = cam0 at frame 0; x right, y down, z forward)
 //
