@@ -181,6 +181,9 @@ void BM_FilterRun(benchmark::State& state) {
     core::OdometryReading odometry{0, 0, {}};
     filter.start(odometry, truth);
     JustInTimeGrid cache(grid_config, GridGeometry::centred_on(grid_config, truth), kColumns, filter.trajectory());
+    // The root gets its (empty) grid at once, so every lineage has a grid-holding ancestor.
+    for (std::size_t i = 0; i < live.size(); ++i) live[i] = filter.particle(i).trajectory;
+    cache.update(filter.ml_trajectory_node(), live.data(), live.size());
     for (std::uint32_t u = 1; u <= updates; ++u) {
       core::RandomStream noise(11, {core::stream_purpose::test, u, 98});
       truth = truth.compose(step);
