@@ -63,7 +63,12 @@ std::string report_json(const mrclam::Dataset& dataset, int robot, const mrclam:
   if (r.ate_rmse_m) {
     out << "  \"ate_rmse_m\": " << json_number(*r.ate_rmse_m) << ",\n";
   }
-  out << "  \"updates\": " << r.updates << ",\n"
+  const auto pose_json = [](const core::Pose2& p) {
+    return "[" + json_number(p.x) + ", " + json_number(p.y) + ", " + json_number(p.theta) + "]";
+  };
+  out << "  \"final_ml_pose\": " << pose_json(r.final_ml_pose) << ",\n"
+      << "  \"final_weighted_mean_pose\": " << pose_json(r.final_mean_pose) << ",\n"
+      << "  \"updates\": " << r.updates << ",\n"
       << "  \"updates_refused_trajectory_full\": " << r.updates_refused << ",\n"
       << "  \"resamplings\": " << r.resamplings << ",\n"
       << "  \"measurements_used\": " << r.measurements_used << ",\n"

@@ -85,6 +85,8 @@ struct RunResult {
   MapScore filter_map;
   MapScore dead_reckoning_map;
   std::optional<double> ate_rmse_m;
+  core::Pose2 final_ml_pose;    // the filter's frame (its own origin, not the Vicon frame)
+  core::Pose2 final_mean_pose;
   std::uint64_t updates = 0;
   std::uint64_t resamplings = 0;
   std::uint64_t measurements_used = 0;

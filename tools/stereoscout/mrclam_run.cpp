@@ -242,6 +242,8 @@ RunResult run_landmark_slam(const Dataset& dataset, const RunOptions& options) {
     std::reverse(estimated_path.begin(), estimated_path.end());
     result.ate_rmse_m = trajectory_rmse(estimated_path, dataset.groundtruth);
   }
+  result.final_ml_pose = filter->ml_pose();
+  result.final_mean_pose = filter->weighted_mean_pose();
   result.updates = filter->counters().updates;
   result.resamplings = filter->counters().resamplings;
   result.updates_refused = filter->counters().updates_refused_trajectory_full;
