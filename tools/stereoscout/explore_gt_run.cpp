@@ -1,0 +1,283 @@
+#include "explore_gt_run.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include <opencv2/core.hpp>
+
+#include "stereoscout/host_sim/ground_truth.hpp"
+#include "stereoscout/host_sim/renderer.hpp"
+#include "stereoscout/host_sim/simulator.hpp"
+#include "stereoscout/occupancy/occupancy_grid.hpp"
+#include "stereoscout/vision/calibration.hpp"
+#include "stereoscout/vision/obstacle_scan.hpp"
+
+namespace stereoscout::cli {
+namespace {
+
+// Forward-maps the right image's ground-truth depth to a disparity map referenced to the left
+// image, as the dense matcher would produce it (nearest surface wins where two land on one pixel).
+void disparity_from_depth(const cv::Mat& depth_right, double focal_baseline, cv::Mat& disparity_left) {
+  disparity_left.setTo(0.0F);
+  for (int y = 0; y < depth_right.rows; ++y) {
+    const float* depth = depth_right.ptr<float>(y);
+    float* disparity = disparity_left.ptr<float>(y);
+    for (int x = 0; x < depth_right.cols; ++x) {
+      if (!(depth[x] > 0.0F) || !std::isfinite(depth[x])) continue;
+      const double d = focal_baseline / static_cast<double>(depth[x]);
+      const long column = std::lround(x + d);
+      if (column >= depth_right.cols) continue;
+      // The scanner recovers the right-image column as column - d (within half a pixel of x).
+      float& out = disparity[column];
+      const auto value = static_cast<float>(d);
+      if (value > out) out = value;
+    }
+  }
+}
+
+// The camera cannot see the floor closer than h f / (rows - 1 - c_y) along the optical axis
+// (about 1 m for the paper's head at 0.6 m): a low obstacle there is invisible, so a scan must
+// not clear those cells. Each column's ray therefore starts where its floor becomes visible;
+// an obstacle closer than that marks only its own cell. (The occupancy module's insert()
+// starts every ray at the camera, which erased low boxes and table edges as the robot came
+// close to them; see docs/results.md.)
+class BlindZoneInserter {
+ public:
+  BlindZoneInserter(const core::CameraConfig& camera, double resolution_m)
+      : resolution_m_(resolution_m), blind_m_(static_cast<std::size_t>(camera.width_px)) {
+    const double rows_below_centre = std::max(1.0, camera.height_px - 1 - camera.principal_y_px);
+    const double forward_m = camera.mount_height_m * camera.focal_px / rows_below_centre;
+    for (std::size_t u = 0; u < blind_m_.size(); ++u) {
+      const double lateral = (static_cast<double>(u) - camera.principal_x_px) / camera.focal_px;
+      blind_m_[u] = forward_m * std::sqrt(1.0 + lateral * lateral);
+    }
+  }
+
+  void insert(const core::DepthScan& scan, const core::Pose2& pose, occupancy::OccupancyGrid& grid) const {
+    for (std::size_t u = 0; u < scan.columns.size() && u < blind_m_.size(); ++u) {
+      const core::DepthScanColumn& column = scan.columns[u];
+      if (column.kind == core::DepthScanColumn::Kind::invalid) continue;
+      const Eigen::Vector2d end(column.x_robot_m, column.y_robot_m);
+      const Eigen::Vector2d along = end - scan.origin_robot;
+      const double length = along.norm();
+      const bool obstacle = column.kind == core::DepthScanColumn::Kind::obstacle;
+      // The farthest floor point of a free column often lies in the cell of the wall behind
+      // it: stop a cell short so that the wall's base is not cleared.
+      const double reach = obstacle ? length : length - resolution_m_;
+      if (reach <= blind_m_[u] && !obstacle) continue;
+      const Eigen::Vector2d start =
+          length <= blind_m_[u] ? end : Eigen::Vector2d(scan.origin_robot + along * (blind_m_[u] / length));
+      const Eigen::Vector2d stop = scan.origin_robot + along * (reach / length);
+      occupancy::ScanPoint point{static_cast<float>(stop.x()), static_cast<float>(stop.y()), column.kind};
+      occupancy::ScanView view{start.x(), start.y(), &point, 1};
+      grid.insert(view, pose);
+    }
+  }
+
+ private:
+  double resolution_m_;
+  std::vector<double> blind_m_;
+};
+
+struct GroundTruthCoverage {
+  host_sim::GroundTruthGrid reachable;
+  std::size_t reachable_cells = 0;
+
+  GroundTruthCoverage(const core::SystemConfig& config, const host_sim::World& world) {
+    const host_sim::GroundTruthGrid occupancy = host_sim::rasterize_world(
+        world, config.grid.resolution_m, config.sim.floor_tolerance_m, config.robot.height_m);
+    reachable = host_sim::reachable_free_space(occupancy, world.start.translation(), config.robot.radius_m);
+    reachable_cells = reachable.count(host_sim::GroundTruthGrid::free);
+  }
+
+  std::size_t covered(const explore::GridView& grid) const {
+    std::size_t count = 0;
+    for (int y = 0; y < reachable.height; ++y) {
+      for (int x = 0; x < reachable.width; ++x) {
+        if (reachable.at(x, y) != host_sim::GroundTruthGrid::free) continue;
+        const Eigen::Vector2i cell = grid.cell_of(reachable.cell_center(x, y));
+        if (grid.contains(cell.x(), cell.y()) && grid.at(cell.x(), cell.y()) == explore::CellState::free) ++count;
+      }
+    }
+    return count;
+  }
+};
+
+// The ROS thresholds on p = 1 - 1 / (1 + e^l), compared in log-odds (no exp per cell).
+void classify_grid(const occupancy::OccupancyGrid& grid, const occupancy::CellThresholds& thresholds,
+                   std::vector<std::uint8_t>& cells) {
+  const auto occupied_above = static_cast<float>(std::log(thresholds.occupied / (1.0 - thresholds.occupied)));
+  const auto free_below = static_cast<float>(std::log(thresholds.free / (1.0 - thresholds.free)));
+  const float* log_odds = grid.data();
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    const float l = log_odds[i];
+    cells[i] = static_cast<std::uint8_t>(l > occupied_above ? explore::CellState::occupied
+                                         : l < free_below   ? explore::CellState::free
+                                                            : explore::CellState::unknown);
+  }
+}
+
+std::string write_grid(const explore::GridView& grid, const std::string& pgm_path) {
+  host_sim::GroundTruthGrid map;
+  map.origin = grid.origin_m;
+  map.resolution_m = grid.resolution_m;
+  map.width = grid.width;
+  map.height = grid.height;
+  map.cells.resize(static_cast<std::size_t>(grid.width) * static_cast<std::size_t>(grid.height));
+  for (std::size_t i = 0; i < map.cells.size(); ++i) {
+    const auto state = static_cast<explore::CellState>(grid.cells[i]);
+    map.cells[i] = state == explore::CellState::free       ? host_sim::GroundTruthGrid::free
+                   : state == explore::CellState::occupied ? host_sim::GroundTruthGrid::occupied
+                                                           : host_sim::GroundTruthGrid::unknown;
+  }
+  std::string error = host_sim::write_map_pgm(map, pgm_path);
+  if (!error.empty()) return error;
+  const std::size_t dot = pgm_path.rfind('.');
+  const std::string stem = dot == std::string::npos ? pgm_path : pgm_path.substr(0, dot);
+  const std::size_t slash = pgm_path.rfind('/');
+  return host_sim::write_map_yaml(map, stem + ".yaml", slash == std::string::npos ? pgm_path : pgm_path.substr(slash + 1));
+}
+
+}  // namespace
+
+ExploreGtResult run_explore_gt(const core::SystemConfig& config, const host_sim::World& world,
+                               const ExploreGtOptions& options) {
+  ExploreGtResult result;
+  const std::string unsupported = host_sim::check_camera_supported(config.camera);
+  if (!unsupported.empty()) {
+    result.error = unsupported;
+    return result;
+  }
+  const auto seed = static_cast<std::uint64_t>(config.run.seed);
+  host_sim::Simulator simulator(world, config.robot, config.camera, config.sim, seed);
+  simulator.teleport(world.start);
+  host_sim::StereoRenderer renderer(world, config.camera, config.sim, seed);
+  const core::CameraMount mount{config.camera.mount_x_m, config.camera.mount_y_m, config.camera.mount_height_m,
+                                core::degrees_to_radians(config.camera.mount_tilt_deg)};
+  vision::ObstacleScanner scanner(vision::scan_params_from_config(config.vision, config.robot),
+                                  vision::calibration_from_config(config.camera), mount);
+  core::DepthScan scan;
+  scanner.allocate(scan);
+  const BlindZoneInserter inserter(config.camera, config.grid.resolution_m);
+  cv::Mat left(config.camera.height_px, config.camera.width_px, CV_8UC1);
+  cv::Mat right(config.camera.height_px, config.camera.width_px, CV_8UC1);
+  cv::Mat depth(config.camera.height_px, config.camera.width_px, CV_32FC1);
+  cv::Mat disparity(config.camera.height_px, config.camera.width_px, CV_32FC1);
+  const double focal_baseline = config.camera.focal_px * config.camera.baseline_m;
+
+  const occupancy::GridGeometry geometry = occupancy::GridGeometry::centred_on(config.grid, world.start);
+  occupancy::OccupancyGrid grid(geometry, occupancy::LogOddsModel::from_config(config.grid));
+  const occupancy::CellThresholds thresholds = occupancy::CellThresholds::from_config(config.grid);
+  std::vector<std::uint8_t> cells(geometry.cell_count(), static_cast<std::uint8_t>(explore::CellState::unknown));
+  explore::GridView view;
+  view.width = geometry.width_cells;
+  view.height = geometry.height_cells;
+  view.resolution_m = geometry.resolution_m;
+  view.origin_m = Eigen::Vector2d(geometry.origin_x_m, geometry.origin_y_m);
+  view.cells = cells.data();
+
+  core::ExploreConfig explore_config = config.explore;
+  explore_config.time_limit_s = std::min(explore_config.time_limit_s, config.run.max_time_s);
+  explore::Explorer explorer(explore::ExploreParams::from_config(explore_config, config.robot, config.camera,
+                                                                 geometry.width_cells, geometry.height_cells));
+  const GroundTruthCoverage truth(config, world);
+  result.reachable_cells = truth.reachable_cells;
+
+  const double min_translation = config.robot.update_min_translation_m;
+  const double min_rotation = core::degrees_to_radians(config.robot.update_min_rotation_deg);
+  const double hard_limit_s = explore_config.time_limit_s + options.return_allowance_s;
+  bool first = true;
+  core::Pose2 last_update_pose;
+  double last_update_camera_heading = 0.0;
+  double next_sample_s = 0.0;
+  std::uint32_t frame = 0;
+  bool exploration_over = false;
+  while (simulator.time_s() < hard_limit_s) {
+    const core::Pose2 pose = simulator.true_pose();
+    const double camera_heading = pose.theta + simulator.pan_rad();
+    const bool update_due = first || (pose.translation() - last_update_pose.translation()).norm() > min_translation ||
+                            std::abs(core::wrap_angle(camera_heading - last_update_camera_heading)) > min_rotation;
+    if (update_due) {
+      renderer.render(pose, simulator.pan_rad(), simulator.time_s(), frame++, left, right, &depth);
+      disparity_from_depth(depth, focal_baseline, disparity);
+      scanner.compute(disparity, simulator.pan_rad(), simulator.time_ns(), scan);
+      inserter.insert(scan, pose, grid);
+      classify_grid(grid, thresholds, cells);
+      last_update_pose = pose;
+      last_update_camera_heading = camera_heading;
+      first = false;
+      ++result.updates;
+    }
+    if (simulator.time_s() >= next_sample_s) {
+      result.coverage_curve.push_back(
+          {simulator.time_s(), static_cast<double>(truth.covered(view)) / static_cast<double>(truth.reachable_cells)});
+      next_sample_s += options.coverage_sample_period_s;
+    }
+    explore::ExploreInput input;
+    input.time_s = simulator.time_s();
+    input.pose = pose;
+    input.pan_rad = simulator.pan_rad();
+    input.grid = view;
+    input.grid_updated = update_due;
+    const explore::ExploreOutput output = explorer.step(input);
+    if (!exploration_over && explorer.finish_reason() != explore::FinishReason::none) {
+      exploration_over = true;
+      result.exploration_time_s = simulator.time_s();
+    }
+    if (output.state == explore::ExploreState::finished) break;
+    simulator.command(output.drive);
+    simulator.command_pan(output.pan_target_rad);
+    const std::uint64_t collisions_before = simulator.collision_count();
+    simulator.step(options.control_period_s);
+    if (simulator.collision_count() > collisions_before && result.collision_log.size() < 8) {
+      char line[200];
+      std::snprintf(line, sizeof(line), "t=%.1f pose=(%.2f, %.2f, %.0f deg) v=%.3f w=%.3f state=%s", simulator.time_s(),
+                    pose.x, pose.y, core::radians_to_degrees(pose.theta), output.drive.linear_mps,
+                    output.drive.angular_rad_s, explore::to_string(output.state));
+      result.collision_log.emplace_back(line);
+    }
+  }
+  if (!exploration_over) result.exploration_time_s = simulator.time_s();
+  result.total_time_s = simulator.time_s();
+  result.covered_cells = truth.covered(view);
+  result.coverage = truth.reachable_cells == 0 ? 0.0
+                                               : static_cast<double>(result.covered_cells) /
+                                                     static_cast<double>(truth.reachable_cells);
+  result.coverage_curve.push_back({simulator.time_s(), result.coverage});
+  result.collisions = simulator.collision_count();
+  result.distance_m = simulator.distance_travelled_m();
+  result.distance_from_start_m = (simulator.true_pose().translation() - world.start.translation()).norm();
+  result.counters = explorer.counters();
+  result.finish_reason = explorer.finish_reason();
+  result.final_state = explorer.state();
+  if (!options.map_pgm.empty()) result.error = write_grid(view, options.map_pgm);
+  return result;
+}
+
+std::string explore_gt_json(const std::string& world_name, const ExploreGtResult& result) {
+  const explore::ExploreCounters& c = result.counters;
+  const char* reason = result.finish_reason == explore::FinishReason::explored     ? "explored"
+                       : result.finish_reason == explore::FinishReason::time_limit ? "time_limit"
+                                                                                   : "none";
+  char buffer[2048];
+  std::snprintf(buffer, sizeof(buffer),
+                "{\"world\": \"%s\", \"coverage\": %.4f, \"reachable_cells\": %zu, \"covered_cells\": %zu, "
+                "\"collisions\": %llu, \"exploration_time_s\": %.1f, \"total_time_s\": %.1f, \"distance_m\": %.2f, "
+                "\"distance_from_start_m\": %.2f, \"finish\": \"%s\", \"final_state\": \"%s\", \"updates\": %llu, "
+                "\"goals_chosen\": %llu, \"goals_reached\": %llu, \"goals_abandoned\": %llu, \"goal_failures\": %llu, "
+                "\"goals_blacklisted\": %llu, \"plan_failures\": %llu, \"replans\": %llu, \"stuck\": %llu, "
+                "\"safety_stops\": %llu, \"looks\": %llu, \"return_failures\": %llu}",
+                world_name.c_str(), result.coverage, result.reachable_cells, result.covered_cells,
+                static_cast<unsigned long long>(result.collisions), result.exploration_time_s, result.total_time_s,
+                result.distance_m, result.distance_from_start_m, reason, explore::to_string(result.final_state),
+                static_cast<unsigned long long>(result.updates), static_cast<unsigned long long>(c.goals_chosen),
+                static_cast<unsigned long long>(c.goals_reached), static_cast<unsigned long long>(c.goals_abandoned),
+                static_cast<unsigned long long>(c.goal_failures), static_cast<unsigned long long>(c.goals_blacklisted),
+                static_cast<unsigned long long>(c.plan_failures), static_cast<unsigned long long>(c.replans),
+                static_cast<unsigned long long>(c.stuck), static_cast<unsigned long long>(c.safety_stops),
+                static_cast<unsigned long long>(c.looks), static_cast<unsigned long long>(c.return_failures));
+  return buffer;
+}
+
+}  // namespace stereoscout::cli
