@@ -14,6 +14,7 @@ constexpr Command kCommands[] = {
     {"slam", "run the stereo front end and the filter on a KITTI odometry folder and score the trajectory", run_slam},
     {"sim-render", "render the simulated stereo pair and ground-truth depth seen from a pose", run_sim_render},
     {"world-map", "write the ground-truth occupancy map and reachable free space of a world", run_world_map},
+    {"explore-gt", "explore simulated worlds with ground-truth poses: coverage, collisions, time, distance", run_explore_gt},
     {"eval-disparity", "dense disparity of a rectified pair scored against ground truth (JSON)", run_eval_disparity},
     {"eval-map", "score an occupancy map (map.yaml) against a ground-truth map (JSON)", run_eval_map},
     {nullptr, nullptr, nullptr},

@@ -30,5 +30,6 @@ int run_landmark_slam(int argc, char** argv);
 int run_slam(int argc, char** argv);
 int run_sim_render(int argc, char** argv);
 int run_world_map(int argc, char** argv);
+int run_explore_gt(int argc, char** argv);
 
 }  // namespace stereoscout::cli
