@@ -58,6 +58,15 @@ function(stereoscout_add_test name)
     DISCOVERY_TIMEOUT 60)
 endfunction()
 
+# stereoscout_test_runs_command(<test target>): the test runs the stereoscout executable
+# through stereoscout/test/command.hpp (under the cross emulator in a cross build).
+function(stereoscout_test_runs_command target)
+  list(JOIN CMAKE_CROSSCOMPILING_EMULATOR " " emulator)
+  target_compile_definitions(${target} PRIVATE
+    STEREOSCOUT_TEST_BINARY="$<TARGET_FILE:stereoscout>" STEREOSCOUT_TEST_BINARY_EMULATOR="${emulator}")
+  add_dependencies(${target} stereoscout)
+endfunction()
+
 # stereoscout_add_benchmark(<name> SOURCES ... [DEPENDS ...])
 function(stereoscout_add_benchmark name)
   if(NOT STEREOSCOUT_BUILD_BENCHMARKS)

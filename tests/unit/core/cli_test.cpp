@@ -1,35 +1,16 @@
 // The stereoscout command as a user runs it: exit codes and messages.
 #include <gtest/gtest.h>
 
-#include <cstdio>
-#include <cstdlib>
 #include <fstream>
 #include <string>
 
+#include "stereoscout/test/command.hpp"
+
 namespace {
 
-struct Result {
-  int exit_code;
-  std::string output;  // stdout and stderr together
-};
+using stereoscout::test::CommandResult;
 
-Result run(const std::string& arguments) {
-  const std::string emulator = STEREOSCOUT_BINARY_EMULATOR;
-  const std::string command =
-      (emulator.empty() ? "" : emulator + " ") + STEREOSCOUT_BINARY + " " + arguments + " 2>&1";
-  std::FILE* pipe = ::popen(command.c_str(), "r");
-  Result result{-1, ""};
-  if (pipe == nullptr) {
-    return result;
-  }
-  char buffer[512];
-  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) {
-    result.output += buffer;
-  }
-  const int status = ::pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
+CommandResult run(const std::string& arguments) { return stereoscout::test::run_stereoscout(arguments); }
 
 std::string write_temp(const std::string& name, const std::string& text) {
   const std::string path = ::testing::TempDir() + name;
@@ -38,26 +19,26 @@ std::string write_temp(const std::string& name, const std::string& text) {
 }
 
 TEST(Cli, HelpListsCommands) {
-  const Result result = run("--help");
+  const CommandResult result = run("--help");
   EXPECT_EQ(result.exit_code, 0);
   EXPECT_NE(result.output.find("config"), std::string::npos);
 }
 
 TEST(Cli, UnknownCommandFailsClearly) {
-  const Result result = run("fly");
+  const CommandResult result = run("fly");
   EXPECT_EQ(result.exit_code, 2);
   EXPECT_NE(result.output.find("unknown command 'fly'"), std::string::npos);
 }
 
 TEST(Cli, ConfigAcceptsTheDefaultFile) {
-  const Result result = run("config");
+  const CommandResult result = run("config");
   EXPECT_EQ(result.exit_code, 0) << result.output;
   EXPECT_NE(result.output.find("config OK"), std::string::npos);
 }
 
 TEST(Cli, ConfigReportsEveryProblemWithFileAndKey) {
   const std::string path = write_temp("bad.yaml", "filter:\n  particles: lots\nrobot:\n  radius: 0.3\n");
-  const Result result = run("config --config " + path);
+  const CommandResult result = run("config --config " + path);
   EXPECT_EQ(result.exit_code, 1);
   EXPECT_NE(result.output.find(path + ": filter.particles: expected an integer"), std::string::npos) << result.output;
   EXPECT_NE(result.output.find(path + ": robot.radius: unknown key (did you mean 'radius_m'?)"), std::string::npos)
@@ -65,14 +46,14 @@ TEST(Cli, ConfigReportsEveryProblemWithFileAndKey) {
 }
 
 TEST(Cli, ConfigPrintRoundTrips) {
-  const Result printed = run("config --print");
+  const CommandResult printed = run("config --print");
   ASSERT_EQ(printed.exit_code, 0);
   const std::string path = write_temp("printed.yaml", printed.output);
   EXPECT_EQ(run("config --config " + path).exit_code, 0);
 }
 
 TEST(Cli, BadOptionsAreNamed) {
-  Result result = run("config --frobnicate");
+  CommandResult result = run("config --frobnicate");
   EXPECT_EQ(result.exit_code, 2);
   EXPECT_NE(result.output.find("unknown option --frobnicate"), std::string::npos);
   result = run("config --config");

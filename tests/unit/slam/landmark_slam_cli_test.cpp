@@ -2,37 +2,19 @@
 // same bytes for the same seed, and clear errors.
 #include <gtest/gtest.h>
 
-#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
 
+#include "stereoscout/test/command.hpp"
 #include "stereoscout/test/paths.hpp"
 
 namespace {
 
-struct Result {
-  int exit_code;
-  std::string output;  // stdout and stderr together
-};
+using stereoscout::test::CommandResult;
 
-Result run(const std::string& arguments) {
-  const std::string emulator = STEREOSCOUT_BINARY_EMULATOR;
-  const std::string command =
-      (emulator.empty() ? "" : emulator + " ") + STEREOSCOUT_BINARY + " landmark-slam " + arguments + " 2>&1";
-  std::FILE* pipe = ::popen(command.c_str(), "r");
-  Result result{-1, ""};
-  if (pipe == nullptr) {
-    return result;
-  }
-  char buffer[512];
-  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) {
-    result.output += buffer;
-  }
-  const int status = ::pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
+CommandResult run(const std::string& arguments) {
+  return stereoscout::test::run_stereoscout("landmark-slam " + arguments);
 }
 
 std::string read_file(const std::string& path) {
@@ -50,7 +32,7 @@ TEST(LandmarkSlamCli, WritesTheRunFilesAndTheSameBytesForTheSameSeed) {
   const std::string out_a = ::testing::TempDir() + "landmark_slam_a";
   const std::string out_b = ::testing::TempDir() + "landmark_slam_b";
   const std::string common = "--mrclam " + folder + " --robot 3 --particles 30 --duration 60 --seed 4 --out ";
-  const Result a = run(common + out_a);
+  const CommandResult a = run(common + out_a);
   ASSERT_EQ(a.exit_code, 0) << a.output;
   ASSERT_EQ(run(common + out_b).exit_code, 0);
   const std::string report = read_file(out_a + "/report.json");
@@ -68,7 +50,7 @@ TEST(LandmarkSlamCli, WritesTheRunFilesAndTheSameBytesForTheSameSeed) {
 }
 
 TEST(LandmarkSlamCli, NamesAMissingFolderAndAMissingOption) {
-  Result result = run("--mrclam /nonexistent/mrclam --robot 1 --out " + ::testing::TempDir() + "unused");
+  CommandResult result = run("--mrclam /nonexistent/mrclam --robot 1 --out " + ::testing::TempDir() + "unused");
   EXPECT_EQ(result.exit_code, 1);
   EXPECT_NE(result.output.find("/nonexistent/mrclam/Barcodes.dat"), std::string::npos) << result.output;
   result = run("--robot 1");
