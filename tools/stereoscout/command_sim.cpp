@@ -64,7 +64,7 @@ int run_sim_render(int argc, char** argv) {
                       "optical axis of the right camera, 0 = nothing) into the output directory.");
   arguments.option("config", "FILE", "config file (camera, sim sections)", default_config_path());
   arguments.option("world", "FILE", "world file (default: run.world of the config)");
-  arguments.option("pose", "X,Y,THETA", "robot pose in the world: metres, metres, degrees", "");
+  arguments.option("pose", "X,Y,THETA", "robot pose in the world: metres, metres, degrees (default: the world's start)");
   arguments.option("pan", "DEG", "pan unit angle in degrees", "0");
   arguments.option("time", "S", "simulated time in seconds (where the people are)", "0");
   arguments.option("out", "DIR", "output directory", ".");
