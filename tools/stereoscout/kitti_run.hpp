@@ -24,7 +24,7 @@ struct RunOptions {
   double rpe_segment_m = 10.0;
 };
 
-// The share of a sequence's trajectory errors, with and without the filter.
+// Trajectory errors against the ground truth (of the filter, or of the odometry alone).
 struct TrajectoryScore {
   double ate_rmse_m = 0.0;
   double rpe_per_m = 0.0;
