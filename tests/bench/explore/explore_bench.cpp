@@ -107,3 +107,5 @@ BENCHMARK(BM_AStarAcrossTheBuilding)->SCENES;
 
 }  // namespace
 }  // namespace stereoscout::explore
+
+BENCHMARK_MAIN();

@@ -11,7 +11,7 @@ struct ExploreConfig {
   double ray_cap_sigmas = 3.0;
   int candidate_stride_cells = 3;
   double safety_margin_m = 0.10;
-  double min_goal_value = 2.0;
+  double min_goal_value = 3.0;
   double goal_tolerance_m = 0.25;
   int goal_failures_before_blacklist = 3;
   double visited_goal_radius_m = 0.5;
@@ -38,7 +38,7 @@ inline void describe(ConfigVisitor& v, ExploreConfig& c) {
   v.number("ray_cap_sigmas", c.ray_cap_sigmas, {0.5, 10.0, "sigma", "Rays stop at r* + this many sigma; a ray that meets no unknown cell by then adds 0 (the paper's V there is below exp(-4.5) at 3)."});
   v.integer_field("candidate_stride_cells", c.candidate_stride_cells, {1, 20, "cells", "H is evaluated on a lattice of this spacing, then at full resolution around the best lattice cell."});
   v.number("safety_margin_m", c.safety_margin_m, {0.0, 2.0, "m", "Added to the robot radius when inflating obstacles; goals keep this clearance, paths pay a high cost inside it."});
-  v.number("min_goal_value", c.min_goal_value, {0.0, 1000.0, "", "Exploration ends when no goal is worth more than this (about two rays seeing unknown space at r*; small unknown pockets, such as the floor under a table, are not worth a trip)."});
+  v.number("min_goal_value", c.min_goal_value, {0.0, 1000.0, "", "Exploration ends when no goal is worth more than this (about three rays seeing unknown space at r*; small unknown pockets, such as the floor under a table, are not worth a trip)."});
   v.number("goal_tolerance_m", c.goal_tolerance_m, {0.01, 5.0, "m", "A goal is reached within this distance."});
   v.integer_field("goal_failures_before_blacklist", c.goal_failures_before_blacklist, {1, 100, "", "A goal that failed this many times is never chosen again."});
   v.number("visited_goal_radius_m", c.visited_goal_radius_m, {0.0, 10.0, "m", "Candidates this close to a blacklisted or already visited goal are skipped."});
