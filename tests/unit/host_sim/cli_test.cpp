@@ -3,28 +3,22 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include <cstdio>
-#include <cstdlib>
 #include <fstream>
 #include <string>
 
+#include "stereoscout/test/command.hpp"
+#include "stereoscout/test/paths.hpp"
+
 namespace {
 
-std::string world_path(const char* name) {
-  const char* root = std::getenv("STEREOSCOUT_SOURCE_DIR");
-  return std::string(root != nullptr ? root : STEREOSCOUT_TEST_SOURCE_DIR) + "/config/worlds/" + name;
-}
+std::string world_path(const char* name) { return stereoscout::test::source_path(std::string("config/worlds/") + name); }
 
 int run(const std::string& arguments, std::string* output = nullptr) {
-  const std::string command = std::string(STEREOSCOUT_BINARY) + " " + arguments + " 2>&1";
-  std::FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return -1;
-  char buffer[512];
-  std::string text;
-  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) text += buffer;
-  if (output != nullptr) *output = text;
-  const int status = pclose(pipe);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  const stereoscout::test::CommandResult result = stereoscout::test::run_stereoscout(arguments);
+  if (output != nullptr) {
+    *output = result.output;
+  }
+  return result.exit_code;
 }
 
 TEST(SimCommands, SimRenderWritesThePairAndDepthInMillimetres) {

@@ -1,18 +1,15 @@
 #pragma once
 // Small worlds written by the tests themselves, and the path of the shipped ones.
-#include <cstdlib>
 #include <string>
 
 #include <gtest/gtest.h>
 
 #include "stereoscout/host_sim/world.hpp"
+#include "stereoscout/test/paths.hpp"
 
 namespace stereoscout::host_sim::testing {
 
-inline std::string source_path(const std::string& relative) {
-  const char* root = std::getenv("STEREOSCOUT_SOURCE_DIR");
-  return std::string(root != nullptr ? root : STEREOSCOUT_TEST_SOURCE_DIR) + "/" + relative;
-}
+using stereoscout::test::source_path;
 
 // A 10 m x 6 m room; `wall_texture` on all four walls, floor and ceiling as given.
 inline std::string room_yaml(const std::string& wall_texture, const std::string& floor_texture = "tile",
