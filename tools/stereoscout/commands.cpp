@@ -10,11 +10,11 @@ namespace {
 
 constexpr Command kCommands[] = {
     {"config", "check a config file, print the effective config or the key reference", run_config},
-    {"landmark-slam", "run the landmark filter on one robot of a UTIAS MRCLAM dataset and score its map", run_landmark_slam},
-    {"slam", "run the stereo front end and the filter on a KITTI odometry folder and score the trajectory", run_slam},
     {"sim-render", "render the simulated stereo pair and ground-truth depth seen from a pose", run_sim_render},
     {"world-map", "write the ground-truth occupancy map and reachable free space of a world", run_world_map},
     {"explore-gt", "explore simulated worlds with ground-truth poses: coverage, collisions, time, distance", run_explore_gt},
+    {"landmark-slam", "run the landmark filter on one robot of a UTIAS MRCLAM dataset and score its map", run_landmark_slam},
+    {"slam", "run the stereo front end and the filter on a KITTI odometry folder and score the trajectory", run_slam},
     {"eval-disparity", "dense disparity of a rectified pair scored against ground truth (JSON)", run_eval_disparity},
     {"eval-map", "score an occupancy map (map.yaml) against a ground-truth map (JSON)", run_eval_map},
     {nullptr, nullptr, nullptr},
@@ -40,13 +40,14 @@ std::string resolve_data_path(const std::string& path) {
   if (path.empty() || path[0] == '/' || file_exists(path)) {
     return path;
   }
-  const std::string in_source = std::string(STEREOSCOUT_SOURCE_DIR) + "/" + path;
-  if (file_exists(in_source)) {
-    return in_source;
-  }
+  // An installed binary finds its data beside it; a binary in a build tree, in the source.
   const std::string installed = executable_directory() + "/../share/stereoscout/" + path;
   if (file_exists(installed)) {
     return installed;
+  }
+  const std::string in_source = std::string(STEREOSCOUT_SOURCE_DIR) + "/" + path;
+  if (file_exists(in_source)) {
+    return in_source;
   }
   return path;
 }

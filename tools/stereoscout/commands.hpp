@@ -16,20 +16,20 @@ struct Command {
 // The table of subcommands, ending with a row whose name is nullptr.
 const Command* command_table();
 
-// Where to find config/stereoscout.yaml: in the source tree of this build, else beside the
-// installed binary (<prefix>/share/stereoscout/config).
+// Where to find config/stereoscout.yaml: beside an installed binary
+// (<prefix>/share/stereoscout/config), else in the source tree of this build.
 std::string default_config_path();
-// Resolves a path given in config (a world file, ...) against the source or install tree
-// when it is relative and not found from the current directory.
+// Resolves a relative path (a world file, ...) that is not found from the current directory
+// against the install tree, then the source tree.
 std::string resolve_data_path(const std::string& path);
 
 int run_config(int argc, char** argv);
 int run_eval_disparity(int argc, char** argv);
 int run_eval_map(int argc, char** argv);
-int run_landmark_slam(int argc, char** argv);
-int run_slam(int argc, char** argv);
 int run_sim_render(int argc, char** argv);
 int run_world_map(int argc, char** argv);
 int run_explore_gt(int argc, char** argv);
+int run_landmark_slam(int argc, char** argv);
+int run_slam(int argc, char** argv);
 
 }  // namespace stereoscout::cli
