@@ -72,6 +72,7 @@ int run_explore_gt(int argc, char** argv) {
     host_sim::World& world = world_load.world;
     if (arguments.has("no-people")) world.people.clear();
     ExploreGtOptions options;
+    options.coverage_sample_period_s = 30.0;
     if (!out.empty()) options.map_pgm = out + "/" + world.name + ".pgm";
     const ExploreGtResult result = run_explore_gt(config, world, options);
     if (!result.error.empty()) {

@@ -260,15 +260,26 @@ std::string explore_gt_json(const std::string& world_name, const ExploreGtResult
   const char* reason = result.finish_reason == explore::FinishReason::explored     ? "explored"
                        : result.finish_reason == explore::FinishReason::time_limit ? "time_limit"
                                                                                    : "none";
+  // First sampled time at which the coverage reached 90% / 95% (-1: never).
+  double time_to[2] = {-1.0, -1.0};
+  const double levels[2] = {0.90, 0.95};
+  for (int k = 0; k < 2; ++k) {
+    for (const CoverageSample& sample : result.coverage_curve) {
+      if (sample.coverage >= levels[k]) {
+        time_to[k] = sample.time_s;
+        break;
+      }
+    }
+  }
   char buffer[2048];
   std::snprintf(buffer, sizeof(buffer),
-                "{\"world\": \"%s\", \"coverage\": %.4f, \"reachable_cells\": %zu, \"covered_cells\": %zu, "
+                "{\"world\": \"%s\", \"coverage\": %.4f, \"time_to_90_s\": %.0f, \"time_to_95_s\": %.0f, \"reachable_cells\": %zu, \"covered_cells\": %zu, "
                 "\"collisions\": %llu, \"exploration_time_s\": %.1f, \"total_time_s\": %.1f, \"distance_m\": %.2f, "
                 "\"distance_from_start_m\": %.2f, \"finish\": \"%s\", \"final_state\": \"%s\", \"updates\": %llu, "
                 "\"goals_chosen\": %llu, \"goals_reached\": %llu, \"goals_abandoned\": %llu, \"goal_failures\": %llu, "
                 "\"goals_blacklisted\": %llu, \"plan_failures\": %llu, \"replans\": %llu, \"stuck\": %llu, "
                 "\"safety_stops\": %llu, \"looks\": %llu, \"return_failures\": %llu}",
-                world_name.c_str(), result.coverage, result.reachable_cells, result.covered_cells,
+                world_name.c_str(), result.coverage, time_to[0], time_to[1], result.reachable_cells, result.covered_cells,
                 static_cast<unsigned long long>(result.collisions), result.exploration_time_s, result.total_time_s,
                 result.distance_m, result.distance_from_start_m, reason, explore::to_string(result.final_state),
                 static_cast<unsigned long long>(result.updates), static_cast<unsigned long long>(c.goals_chosen),
