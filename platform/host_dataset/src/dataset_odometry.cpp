@@ -4,23 +4,9 @@
 #include <utility>
 
 #include "stereoscout/core/check.hpp"
+#include "stereoscout/core/odometry_noise.hpp"
 
 namespace stereoscout::host_dataset {
-
-core::Pose2 corrupt_motion(const core::Pose2& delta, const core::OdometryNoiseConfig& noise, core::RandomStream& random) {
-  const double distance = std::hypot(delta.x, delta.y);
-  const double turned = std::abs(delta.theta);
-  // Random walk: the variances grow linearly with distance and turned angle.
-  const double distance_sigma = noise.translation_sigma_m_per_sqrt_m * std::sqrt(distance);
-  const double rotation_sigma =
-      std::sqrt(noise.rotation_sigma_rad_per_sqrt_rad * noise.rotation_sigma_rad_per_sqrt_rad * turned +
-                noise.rotation_sigma_rad_per_sqrt_m * noise.rotation_sigma_rad_per_sqrt_m * distance);
-  const double measured_distance = distance * (1.0 + noise.scale_error) + distance_sigma * random.gaussian();
-  const double measured_rotation =
-      delta.theta + core::degrees_to_radians(noise.drift_deg_per_m) * distance + rotation_sigma * random.gaussian();
-  const double scale = distance > 0.0 ? measured_distance / distance : 0.0;
-  return core::Pose2{delta.x * scale, delta.y * scale, core::wrap_angle(measured_rotation)};
-}
 
 DatasetOdometry::DatasetOdometry(std::vector<core::Pose2> truth, std::vector<double> times_s,
                                  const core::OdometryNoiseConfig& noise, std::uint64_t seed)
@@ -35,7 +21,7 @@ core::Status DatasetOdometry::read(core::OdometryReading& reading) {
   if (frame > 0) {
     const core::Pose2 delta = truth_[frame - 1].between(truth_[frame]);
     core::RandomStream random(seed_, {core::stream_purpose::dataset_odometry, static_cast<std::uint32_t>(frame), 0});
-    pose_ = pose_.compose(corrupt_motion(delta, noise_, random));
+    pose_ = pose_.compose(core::corrupt_motion(delta, noise_, random));
   }
   reading.timestamp_ns = static_cast<std::int64_t>(std::llround(times_s_[frame] * 1e9));
   reading.sequence = frame;

@@ -3,28 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "stereoscout/core/odometry_noise.hpp"
 #include "stereoscout/core/random.hpp"
 
 namespace stereoscout::host_sim {
 namespace {
 
 std::int64_t seconds_to_ns(double seconds) { return static_cast<std::int64_t>(std::llround(seconds * 1e9)); }
-
-// The odometry's view of a true motion `delta` (robot frame) under a floor's noise model:
-// random errors are a random walk (variance proportional to distance and turned angle),
-// systematic ones a scale error and a heading drift per metre.
-core::Pose2 corrupt_motion(const core::Pose2& delta, const core::OdometryNoiseConfig& noise, core::RandomStream& random) {
-  const double distance = std::hypot(delta.x, delta.y);
-  const double turned = std::abs(delta.theta);
-  const double distance_sigma = noise.translation_sigma_m_per_sqrt_m * std::sqrt(distance);
-  const double rotation_sigma = std::sqrt(noise.rotation_sigma_rad_per_sqrt_rad * noise.rotation_sigma_rad_per_sqrt_rad * turned +
-                                          noise.rotation_sigma_rad_per_sqrt_m * noise.rotation_sigma_rad_per_sqrt_m * distance);
-  const double measured_distance = distance * (1.0 + noise.scale_error) + distance_sigma * random.gaussian();
-  const double measured_rotation = delta.theta + core::degrees_to_radians(noise.drift_deg_per_m) * distance +
-                                   rotation_sigma * random.gaussian();
-  const double scale = distance > 0.0 ? measured_distance / distance : 0.0;
-  return core::Pose2{delta.x * scale, delta.y * scale, core::wrap_angle(measured_rotation)};
-}
 
 }  // namespace
 
@@ -93,7 +78,7 @@ void Simulator::emit_odometry() {
   const core::OdometryNoiseConfig& noise =
       world_.floor_type_at(pose_.translation()) == FloorType::carpet ? sim_.carpet : sim_.tile;
   core::RandomStream random(seed_, {core::stream_purpose::sim_odometry, odometry_sequence_, 0});
-  odometry_pose_ = odometry_pose_.compose(corrupt_motion(delta, noise, random));
+  odometry_pose_ = odometry_pose_.compose(core::corrupt_motion(delta, noise, random));
   pose_at_last_reading_ = pose_;
   OdometrySample& sample = odometry_queue_.next_slot_overwrite();
   sample.reading.timestamp_ns = time_ns_;

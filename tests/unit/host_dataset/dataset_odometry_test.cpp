@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "stereoscout/core/odometry_noise.hpp"
 #include "stereoscout/host_dataset/dataset_odometry.hpp"
 
 namespace stereoscout::host_dataset {
@@ -93,7 +94,7 @@ TEST(DatasetOdometry, RandomWalkHasTheConfiguredSpreadAndIsSeeded) {
 TEST(DatasetOdometry, NoMotionNoNoise) {
   core::OdometryNoiseConfig noise{0.1, 0.1, 0.1, 0.1, 5.0};
   core::RandomStream random(3, {core::stream_purpose::dataset_odometry, 1, 0});
-  const core::Pose2 still = corrupt_motion(core::Pose2{}, noise, random);
+  const core::Pose2 still = core::corrupt_motion(core::Pose2{}, noise, random);
   EXPECT_EQ(still.x, 0.0);
   EXPECT_EQ(still.y, 0.0);
   EXPECT_EQ(still.theta, 0.0);

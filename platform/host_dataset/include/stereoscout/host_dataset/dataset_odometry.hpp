@@ -16,9 +16,7 @@
 
 namespace stereoscout::host_dataset {
 
-// The odometry's view of the true motion `delta` (robot frame).
-core::Pose2 corrupt_motion(const core::Pose2& delta, const core::OdometryNoiseConfig& noise, core::RandomStream& random);
-
+// Noise: core::corrupt_motion (core/odometry_noise.hpp), the simulator's model.
 class DatasetOdometry : public platform::Odometry {
  public:
   // One reading per frame: `truth[k]` is the true robot pose at `times_s[k]` (same length).
