@@ -12,8 +12,10 @@
 #include "kitti_metrics.hpp"
 #include "stereoscout/host_dataset/dataset_odometry.hpp"
 #include "stereoscout/host_dataset/kitti_camera.hpp"
+#include "stereoscout/report/wall_stopwatch.hpp"
 #include "stereoscout/slam/particle_filter.hpp"
 #include "stereoscout/slam/slam_export.hpp"
+#include "stereoscout/vision/front_end.hpp"
 
 namespace stereoscout::cli::kitti {
 namespace {
@@ -86,9 +88,13 @@ RunResult run_kitti_slam(const host_dataset::KittiSequence& sequence, const RunO
   const std::vector<core::Pose2> truth = host_dataset::ground_truth_robot_poses(sequence);
   host_dataset::KittiCamera camera(sequence);
   host_dataset::DatasetOdometry odometry(truth, sequence.times_s, options.dataset.odometry, options.seed);
-  TimedFrontEnd front_end(options.vision, stereo_calibration(sequence.calibration));
-  auto filter = std::make_unique<slam::ParticleFilter>(options.filter, kitti_mount(options.dataset), options.seed);
-  core::FixedVector<core::LandmarkObservation> observations(front_end.max_observations());
+  const core::CameraMount mount = kitti_mount(options.dataset);
+  report::WallStopwatch stopwatch;
+  auto front_end = std::make_unique<vision::VisionFrontEnd>(options.vision, core::RobotConfig{},
+                                                            stereo_calibration(sequence.calibration), mount);
+  front_end->set_stopwatch(&stopwatch);
+  auto filter = std::make_unique<slam::ParticleFilter>(options.filter, mount, options.seed);
+  core::FixedVector<core::LandmarkObservation> observations(front_end->max_observations());
   core::StereoFrame frame;
   frame.allocate(sequence.calibration.width_px, sequence.calibration.height_px);
   ReobservationCheck check(options.filter.association_gate_chi2);
@@ -111,9 +117,13 @@ RunResult run_kitti_slam(const host_dataset::KittiSequence& sequence, const RunO
       result.warnings.push_back(camera.last_failed_path() + ": " + captured.message +
                                 " (pair skipped; this frame's update uses odometry only)");
     } else {
-      front_end.observe(frame, observations, result.times);
-      result.stereo_matches += front_end.last_frame_stats().stereo_matches;
-      result.frames_without_features += front_end.last_frame_stats().stereo_matches == 0 ? 1U : 0U;
+      front_end->observe_landmarks(frame, observations);  // KittiCamera delivers the calibrated size
+      const vision::FrontEndFrameStats& stats = front_end->last_frame_stats();
+      result.times.sift_s += static_cast<double>(stats.sift_ns) * 1e-9;
+      result.times.stereo_matching_s += static_cast<double>(stats.matching_ns) * 1e-9;
+      result.times.index_lookup_s += static_cast<double>(stats.identify_ns) * 1e-9;
+      result.stereo_matches += stats.stereo_matches;
+      result.frames_without_features += stats.stereo_matches == 0 ? 1U : 0U;
       check.observe(host_dataset::right_camera_from_left(sequence.world_from_cam0[index], sequence.calibration.baseline_m),
                     observations.data(), observations.size());
     }
@@ -131,7 +141,7 @@ RunResult run_kitti_slam(const host_dataset::KittiSequence& sequence, const RunO
   result.landmarks = slam::write_landmarks_ply(ply, filter->landmarks(), filter->ml_map(),
                                                static_cast<std::uint32_t>(options.filter.export_min_observations));
   result.landmarks_ply = ply.str();
-  result.identities = static_cast<std::uint32_t>(front_end.index().stats().landmarks);
+  result.identities = static_cast<std::uint32_t>(front_end->index().stats().landmarks);
   result.reobservations = check.reobservations();
   result.reobservations_consistent = check.consistent();
   result.resamplings = filter->counters().resamplings;

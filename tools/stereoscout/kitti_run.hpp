@@ -8,13 +8,20 @@
 #include <string>
 #include <vector>
 
-#include "kitti_front_end.hpp"
 #include "stereoscout/core/config/dataset.hpp"
 #include "stereoscout/core/config/filter.hpp"
 #include "stereoscout/core/config/vision.hpp"
 #include "stereoscout/host_dataset/kitti_sequence.hpp"
 
 namespace stereoscout::cli::kitti {
+
+// Seconds spent per stage, summed over the frames of a run.
+struct StageTimes {
+  double sift_s = 0.0;
+  double stereo_matching_s = 0.0;
+  double index_lookup_s = 0.0;  // descriptor index and triangulation
+  double filter_update_s = 0.0;
+};
 
 struct RunOptions {
   core::VisionConfig vision;

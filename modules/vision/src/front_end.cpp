@@ -51,8 +51,13 @@ core::Status VisionFrontEnd::observe_landmarks(const core::StereoFrame& frame,
     ++rejected_frames_;
     return {core::StatusCode::invalid_input, "stereo pair is not 8-bit grey of the calibrated size"};
   }
+  std::int64_t stage_start = now();
   extract_keys(frame);
+  frame_stats_.sift_ns = now() - stage_start;
+  stage_start = now();
   matcher_.match(left_keys_, right_keys_, matches_);
+  frame_stats_.matching_ns = now() - stage_start;
+  stage_start = now();
   const std::uint64_t frame_index = frame_counter_++;
   frame_stats_.left_keys = left_keys_.size();
   frame_stats_.right_keys = right_keys_.size();
@@ -77,8 +82,11 @@ core::Status VisionFrontEnd::observe_landmarks(const core::StereoFrame& frame,
     observation->covariance = point.covariance;
     ++frame_stats_.landmark_observations;
   }
+  frame_stats_.identify_ns = now() - stage_start;
   return core::Status::success();
 }
+
+std::int64_t VisionFrontEnd::now() const { return stopwatch_ != nullptr ? stopwatch_->now_ns() : 0; }
 
 core::Status VisionFrontEnd::scan(const core::StereoFrame& frame, core::DepthScan& scan) {
   if (!frame_is_usable(frame)) {

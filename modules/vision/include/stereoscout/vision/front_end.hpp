@@ -17,6 +17,7 @@
 #include "stereoscout/core/config/vision.hpp"
 #include "stereoscout/core/fixed_vector.hpp"
 #include "stereoscout/core/geometry.hpp"
+#include "stereoscout/core/logging.hpp"
 #include "stereoscout/core/messages.hpp"
 #include "stereoscout/core/status.hpp"
 #include "stereoscout/vision/calibration.hpp"
@@ -37,6 +38,10 @@ struct FrontEndFrameStats {
   std::size_t new_candidates = 0;
   std::size_t refused = 0;                // index full (see DescriptorIndex)
   std::size_t dropped = 0;                // observation list full
+  // Stage times of this frame, when a stopwatch is set (set_stopwatch); 0 otherwise.
+  std::int64_t sift_ns = 0;
+  std::int64_t matching_ns = 0;
+  std::int64_t identify_ns = 0;           // descriptor index and triangulation
 };
 
 class VisionFrontEnd {
@@ -63,11 +68,15 @@ class VisionFrontEnd {
   const cv::Mat& last_disparity() const { return disparity_; }
 
   const FrontEndFrameStats& last_frame_stats() const { return frame_stats_; }
+  // Times each stage of observe_landmarks for reports. Measurement only: what the front end
+  // computes never depends on it. nullptr (the default) turns timing off.
+  void set_stopwatch(const core::TimeSource* stopwatch) { stopwatch_ = stopwatch; }
   const DescriptorIndex& index() const { return index_; }
   std::size_t max_observations() const { return max_keys_; }
 
  private:
   void extract_keys(const core::StereoFrame& frame);
+  std::int64_t now() const;
   bool frame_is_usable(const core::StereoFrame& frame) const;
 
   StereoCalibration calibration_;
@@ -87,6 +96,7 @@ class VisionFrontEnd {
   std::uint64_t frame_counter_ = 0;
   std::uint64_t rejected_frames_ = 0;
   FrontEndFrameStats frame_stats_;
+  const core::TimeSource* stopwatch_ = nullptr;
 };
 
 }  // namespace stereoscout::vision
