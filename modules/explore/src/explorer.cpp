@@ -227,8 +227,11 @@ void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
     return;
   }
   if (follow.command.linear_mps > 0.0 && !stretch_is_clear(input.grid, input.pose)) {
+    // No translation; turning in place moves the disc into no new cell, and lets the robot
+    // face a replanned path (or a cleared view) instead of standing still for ever.
     ++counters_.safety_stops;
     rebuild_needed_ = true;  // the next tick rebuilds the map from this grid and replans
+    output.drive.angular_rad_s = follow.command.angular_rad_s;
     return;
   }
   output.drive = follow.command;
