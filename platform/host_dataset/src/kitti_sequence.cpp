@@ -29,6 +29,26 @@ bool read_numbers(std::istringstream& fields, std::vector<double>& numbers) {
 
 bool blank(const std::string& line) { return line.find_first_not_of(" \t\r") == std::string::npos; }
 
+// Calls use(line, numbers) for every non-blank line of `text` holding exactly `count`
+// numbers; a line that does not sets `error` to "<name>:<line>: <what>" and stops.
+template <class Use>
+bool parse_number_lines(const std::string& text, const std::string& name, std::size_t count, const char* what,
+                        std::string& error, Use&& use) {
+  std::istringstream lines(text);
+  std::string line;
+  std::vector<double> numbers;
+  for (std::size_t number = 1; std::getline(lines, line); ++number) {
+    if (blank(line)) continue;
+    std::istringstream fields(line);
+    if (!read_numbers(fields, numbers) || numbers.size() != count) {
+      error = located(name, number, what);
+      return false;
+    }
+    if (!use(number, numbers)) return false;
+  }
+  return true;
+}
+
 bool read_file(const std::string& path, std::string& text, std::string& error) {
   std::ifstream file(path, std::ios::binary);
   if (!file) {
@@ -81,46 +101,32 @@ bool parse_kitti_calibration(const std::string& text, const std::string& name, K
 bool parse_kitti_times(const std::string& text, const std::string& name, std::vector<double>& times_s,
                        std::string& error) {
   times_s.clear();
-  std::istringstream lines(text);
-  std::string line;
-  std::vector<double> numbers;
-  for (std::size_t number = 1; std::getline(lines, line); ++number) {
-    if (blank(line)) continue;
-    std::istringstream fields(line);
-    if (!read_numbers(fields, numbers) || numbers.size() != 1) {
-      error = located(name, number, "expected one time in seconds");
-      return false;
-    }
-    // Strictly increasing: a frame's time names its trajectory node in the outputs.
-    if (!times_s.empty() && numbers[0] <= times_s.back()) {
-      error = located(name, number, "time does not increase");
-      return false;
-    }
-    times_s.push_back(numbers[0]);
-  }
-  return true;
+  return parse_number_lines(text, name, 1, "expected one time in seconds", error,
+                            [&](std::size_t line, const std::vector<double>& numbers) {
+                              // Strictly increasing: a frame's time names its trajectory node in the outputs.
+                              if (!times_s.empty() && numbers[0] <= times_s.back()) {
+                                error = located(name, line, "time does not increase");
+                                return false;
+                              }
+                              times_s.push_back(numbers[0]);
+                              return true;
+                            });
 }
 
 bool parse_kitti_poses(const std::string& text, const std::string& name, std::vector<Eigen::Isometry3d>& poses,
                        std::string& error) {
   poses.clear();
-  std::istringstream lines(text);
-  std::string line;
-  std::vector<double> numbers;
-  for (std::size_t number = 1; std::getline(lines, line); ++number) {
-    if (blank(line)) continue;
-    std::istringstream fields(line);
-    if (!read_numbers(fields, numbers) || numbers.size() != 12) {
-      error = located(name, number, "expected 12 numbers (3x4 [R|t], row-major)");
-      return false;
-    }
-    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-    for (int row = 0; row < 3; ++row) {
-      for (int col = 0; col < 4; ++col) pose.matrix()(row, col) = numbers[static_cast<std::size_t>(row * 4 + col)];
-    }
-    poses.push_back(pose);
-  }
-  return true;
+  return parse_number_lines(text, name, 12, "expected 12 numbers (3x4 [R|t], row-major)", error,
+                            [&](std::size_t /*line*/, const std::vector<double>& numbers) {
+                              Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+                              for (int row = 0; row < 3; ++row) {
+                                for (int col = 0; col < 4; ++col) {
+                                  pose.matrix()(row, col) = numbers[static_cast<std::size_t>(row * 4 + col)];
+                                }
+                              }
+                              poses.push_back(pose);
+                              return true;
+                            });
 }
 
 std::string kitti_image_path(const std::string& folder, int camera, std::size_t frame) {
