@@ -58,9 +58,13 @@ void BM_NavigationMapRebuild(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(map.rebuild(scene.view, scene.robot, scene.robot));
 }
 
-void BM_GoalSelection(benchmark::State& state) {
+// Goal selection over candidates on a lattice of `stride` cells (1: every cell).
+void run_goal_selection(benchmark::State& state, int stride) {
   const Scene scene(static_cast<int>(state.range(0)), static_cast<double>(state.range(1)) / 100.0);
-  const ExploreParams params = bench_params();
+  ExploreParams params = bench_params();
+  if (stride > 0) {
+    params.explore.candidate_stride_cells = stride;
+  }
   NavigationMap map(params);
   map.rebuild(scene.view, scene.robot, scene.robot);
   GoalMemory memory(512, 0.5, 3);
@@ -71,19 +75,10 @@ void BM_GoalSelection(benchmark::State& state) {
   }
 }
 
-void BM_GoalSelectionFullResolution(benchmark::State& state) {
-  const Scene scene(static_cast<int>(state.range(0)), static_cast<double>(state.range(1)) / 100.0);
-  ExploreParams params = bench_params();
-  params.explore.candidate_stride_cells = 1;  // every cell: the baseline the lattice avoids
-  NavigationMap map(params);
-  map.rebuild(scene.view, scene.robot, scene.robot);
-  GoalMemory memory(512, 0.5, 3);
-  const GoalValue goal_value(params);
-  for (auto _ : state) {
-    map.compute_reachable(scene.view.cell_of(scene.robot));
-    benchmark::DoNotOptimize(goal_value.select(map, memory));
-  }
-}
+void BM_GoalSelection(benchmark::State& state) { run_goal_selection(state, 0); }  // the configured lattice
+
+// Every cell a candidate: the baseline the lattice avoids.
+void BM_GoalSelectionFullResolution(benchmark::State& state) { run_goal_selection(state, 1); }
 
 void BM_AStarAcrossTheBuilding(benchmark::State& state) {
   const Scene scene(static_cast<int>(state.range(0)), static_cast<double>(state.range(1)) / 100.0);
