@@ -13,6 +13,8 @@ unsigned bits_for_id(std::uint32_t id) {
   return bits;
 }
 
+unsigned levels_for_id(std::uint32_t id) { return (bits_for_id(id) + kTrieDigitBits - 1) / kTrieDigitBits; }
+
 LandmarkStore::LandmarkStore(std::size_t node_capacity, std::size_t estimate_capacity)
     : nodes_(node_capacity), estimates_(estimate_capacity) {}
 
@@ -44,12 +46,12 @@ void LandmarkStore::release_node(MapNodeHandle handle) {
 }
 
 const MapNode* LandmarkStore::find_leaf(const LandmarkMap& map, std::uint32_t id) const {
-  if (!map.root || bits_for_id(id) > map.depth) {
+  if (!map.root || levels_for_id(id) > map.depth) {
     return nullptr;
   }
   MapNodeHandle at = map.root;
   for (unsigned level = map.depth; level > 0; --level) {
-    at = nodes_.get(at).child[(id >> (level - 1)) & 1U];
+    at = nodes_.get(at).child[trie_digit(id, level)];
     if (!at) {
       return nullptr;
     }
@@ -58,15 +60,16 @@ const MapNode* LandmarkStore::find_leaf(const LandmarkMap& map, std::uint32_t id
 }
 
 // A copy of `source` that holds its own references to everything except the child on the
-// path (`path_bit`), which the caller replaces by that child's copy straight away.
-MapNodeHandle LandmarkStore::copy_for_path(MapNodeHandle source, unsigned level, unsigned path_bit) {
+// path (`path_digit`), which the caller replaces by that child's copy straight away.
+MapNodeHandle LandmarkStore::copy_for_path(MapNodeHandle source, unsigned level, unsigned path_digit) {
   const MapNodeHandle copy = nodes_.acquire(nodes_.get(source));
   STEREOSCOUT_CHECK(copy, "landmark node pool ran out after its room was checked");
   const MapNode& copied = nodes_.get(copy);
   if (level > 0) {
-    const MapNodeHandle off_path = copied.child[1U - path_bit];
-    if (off_path) {
-      nodes_.retain(off_path);
+    for (unsigned digit = 0; digit < kTrieFanout; ++digit) {
+      if (digit != path_digit && copied.child[digit]) {
+        nodes_.retain(copied.child[digit]);
+      }
     }
   } else {
     for (const EstimateHandle e : copied.estimates) {
@@ -78,7 +81,7 @@ MapNodeHandle LandmarkStore::copy_for_path(MapNodeHandle source, unsigned level,
 }
 
 MapNode* LandmarkStore::mutable_leaf(LandmarkMap& map, std::uint32_t id, std::size_t estimates_needed) {
-  const unsigned needed_depth = bits_for_id(id);
+  const unsigned needed_depth = levels_for_id(id);
   const unsigned depth = needed_depth > map.depth ? needed_depth : map.depth;
   // Worst case: every node on the path copied or created, plus one new root per new level.
   const std::size_t worst_nodes = depth + 1U + (depth - map.depth);
@@ -91,7 +94,7 @@ MapNode* LandmarkStore::mutable_leaf(LandmarkMap& map, std::uint32_t id, std::si
     map.depth = static_cast<std::uint8_t>(depth);
   }
   while (map.root && map.depth < depth) {
-    // Grow one level: the old tree becomes the left (high bit 0) child of a new root.
+    // Grow one level: the old tree becomes the first (high digit 0) child of a new root.
     MapNode grown;
     grown.child[0] = map.root;  // the map's reference moves to the new root
     map.root = nodes_.acquire(grown);
@@ -103,15 +106,15 @@ MapNode* LandmarkStore::mutable_leaf(LandmarkMap& map, std::uint32_t id, std::si
   MapNodeHandle* link = &map.root;
   bool below_shared = false;
   for (unsigned level = map.depth;; --level) {
-    const unsigned path_bit = level > 0 ? (id >> (level - 1)) & 1U : 0U;
+    const unsigned path_digit = trie_digit(id, level);
     MapNodeHandle current = *link;
     if (!current) {
       current = nodes_.acquire();
       below_shared = false;
     } else if (below_shared) {
-      current = copy_for_path(current, level, path_bit);
+      current = copy_for_path(current, level, path_digit);
     } else if (nodes_.is_shared(current)) {
-      const MapNodeHandle copy = copy_for_path(current, level, path_bit);
+      const MapNodeHandle copy = copy_for_path(current, level, path_digit);
       release_node(current);  // shared, so this only drops the reference we held
       current = copy;
       below_shared = true;
@@ -120,7 +123,7 @@ MapNode* LandmarkStore::mutable_leaf(LandmarkMap& map, std::uint32_t id, std::si
     if (level == 0) {
       return &nodes_.get(current);
     }
-    link = &nodes_.get(current).child[path_bit];
+    link = &nodes_.get(current).child[path_digit];
   }
 }
 

@@ -15,21 +15,27 @@ RobotFrameObservation to_robot_frame(const core::LandmarkObservation& observatio
   RobotFrameObservation moved;
   moved.landmark_id = observation.landmark_id;
   moved.point = robot_from_sensor * observation.point_camera;
-  moved.covariance = core::rotate_covariance(robot_from_sensor.linear(), observation.covariance);
+  moved.covariance = core::symmetrize(core::rotate_covariance(robot_from_sensor.linear(), observation.covariance));
   return moved;
 }
 
-PlanarTransform::PlanarTransform(const core::Pose2& pose) : translation(pose.x, pose.y, 0.0) {
-  const double c = std::cos(pose.theta);
-  const double s = std::sin(pose.theta);
-  rotation << c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0;
-}
+PlanarTransform::PlanarTransform(const core::Pose2& pose)
+    : cosine(std::cos(pose.theta)), sine(std::sin(pose.theta)), translation(pose.x, pose.y, 0.0) {}
 
 MapFrameObservation to_map_frame(const RobotFrameObservation& observation, const PlanarTransform& map_from_robot) {
+  const double c = map_from_robot.cosine;
+  const double s = map_from_robot.sine;
+  const Eigen::Vector3d& p = observation.point;
+  const SymmetricMatrix3& q = observation.covariance;
   MapFrameObservation moved;
-  moved.point = map_from_robot.rotation * observation.point + map_from_robot.translation;
-  moved.covariance = core::symmetrize(map_from_robot.rotation * observation.covariance *
-                                      map_from_robot.rotation.transpose());
+  moved.point = Eigen::Vector3d(c * p.x() - s * p.y(), s * p.x() + c * p.y(), p.z()) + map_from_robot.translation;
+  // R Q R^T with R = [c -s 0; s c 0; 0 0 1]: first B = R2 Q2 on the x-y block, then B R2^T.
+  const double b00 = c * q.xx - s * q.xy;
+  const double b01 = c * q.xy - s * q.yy;
+  const double b10 = s * q.xx + c * q.xy;
+  const double b11 = s * q.xy + c * q.yy;
+  moved.covariance = SymmetricMatrix3(b00 * c - b01 * s, b00 * s + b01 * c, c * q.xz - s * q.yz,
+                                      b10 * s + b11 * c, s * q.xz + c * q.yz, q.zz);
   return moved;
 }
 
@@ -50,19 +56,52 @@ core::LandmarkObservation range_bearing_observation(std::uint32_t landmark_id, d
   return observation;
 }
 
+Innovation innovation(const LandmarkEstimate& estimate, const MapFrameObservation& observation) {
+  const SymmetricMatrix3& p = estimate.covariance;
+  const SymmetricMatrix3& q = observation.covariance;
+  const double a = p.xx + q.xx, b = p.xy + q.xy, c = p.xz + q.xz;  // S = P + C
+  const double d = p.yy + q.yy, e = p.yz + q.yz, f = p.zz + q.zz;
+  // Cofactors of S; S is positive definite iff its leading minors a, ad - b^2, det are.
+  const double cofactor_xx = d * f - e * e;
+  const double cofactor_xy = c * e - b * f;
+  const double cofactor_xz = b * e - c * d;
+  const double minor2 = a * d - b * b;
+  const double determinant = a * cofactor_xx + b * cofactor_xy + c * cofactor_xz;
+  Innovation result;
+  result.delta = observation.point - estimate.mean;
+  if (!(a > 0.0 && minor2 > 0.0 && determinant > 0.0)) {
+    result.distance_squared = std::numeric_limits<double>::infinity();
+    return result;
+  }
+  const double scale = 1.0 / determinant;
+  SymmetricMatrix3& w = result.inverse_covariance;
+  w = SymmetricMatrix3(cofactor_xx * scale, cofactor_xy * scale, cofactor_xz * scale, (a * f - c * c) * scale,
+                       (b * c - a * e) * scale, minor2 * scale);
+  const double x = result.delta.x(), y = result.delta.y(), z = result.delta.z();
+  result.distance_squared = w.xx * x * x + w.yy * y * y + w.zz * z * z +
+                            2.0 * (w.xy * x * y + w.xz * x * z + w.yz * y * z);
+  return result;
+}
+
 double association_distance_squared(const LandmarkEstimate& estimate, const MapFrameObservation& observation) {
-  const Eigen::Matrix3d innovation_covariance = estimate.covariance + observation.covariance;
-  return core::mahalanobis_squared(observation.point - estimate.mean, innovation_covariance);
+  return innovation(estimate, observation).distance_squared;
+}
+
+void ekf_update(LandmarkEstimate& estimate, const Innovation& innovation) {
+  // With h(m) = R^T (m - t) and H = R^T, the gain P H^T (H P H^T + Q)^-1 moved into the map
+  // frame is K = P (P + R Q R^T)^-1 = P S^-1: the same update written where the estimate
+  // lives. The new covariance P - K P is symmetric; only its upper triangle is computed.
+  const Eigen::Matrix3d p = estimate.covariance.full();
+  const Eigen::Matrix3d gain = p * innovation.inverse_covariance.full();
+  estimate.mean += gain * innovation.delta;
+  const auto reduced = [&](Eigen::Index row, Eigen::Index col) { return p(row, col) - gain.row(row).dot(p.col(col)); };
+  estimate.covariance = SymmetricMatrix3(reduced(0, 0), reduced(0, 1), reduced(0, 2), reduced(1, 1), reduced(1, 2),
+                                         reduced(2, 2));
+  ++estimate.observations;
 }
 
 void ekf_update(LandmarkEstimate& estimate, const MapFrameObservation& observation) {
-  // With h(m) = R^T (m - t) and H = R^T, the gain P H^T (H P H^T + Q)^-1 moved into the map
-  // frame is P (P + R Q R^T)^-1: the same update written where the estimate lives.
-  const Eigen::Matrix3d innovation_covariance = estimate.covariance + observation.covariance;
-  const Eigen::Matrix3d gain = estimate.covariance * innovation_covariance.inverse();
-  estimate.mean += gain * (observation.point - estimate.mean);
-  estimate.covariance = core::symmetrize((Eigen::Matrix3d::Identity() - gain) * estimate.covariance);
-  ++estimate.observations;
+  ekf_update(estimate, innovation(estimate, observation));
 }
 
 bool is_valid_observation(const core::LandmarkObservation& observation) {

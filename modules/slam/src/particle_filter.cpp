@@ -183,14 +183,16 @@ double ParticleFilter::observe(Particle& particle, const PlanarTransform& map_fr
     return 0.0;
   }
   std::size_t best = 0;
-  double best_distance = std::numeric_limits<double>::infinity();
+  Innovation best_innovation;
+  best_innovation.distance_squared = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < leaf->estimates.size(); ++i) {
-    const double d2 = association_distance_squared(landmarks_.estimate(leaf->estimates[i]), seen);
-    if (d2 < best_distance) {
-      best_distance = d2;
+    const Innovation candidate = innovation(landmarks_.estimate(leaf->estimates[i]), seen);
+    if (candidate.distance_squared < best_innovation.distance_squared) {
+      best_innovation = candidate;
       best = i;
     }
   }
+  const double best_distance = best_innovation.distance_squared;
   double log_likelihood = -0.5 * best_distance;
   if (!(log_likelihood >= config_.min_log_likelihood)) {
     log_likelihood = config_.min_log_likelihood;
@@ -207,7 +209,7 @@ double ParticleFilter::observe(Particle& particle, const PlanarTransform& map_fr
     return log_likelihood;
   }
   if (in_gate) {
-    ekf_update(landmarks_.mutable_estimate(*own, best), seen);
+    ekf_update(landmarks_.mutable_estimate(*own, best), best_innovation);
     ++counters_.estimates_updated;
   } else {
     // Spatially distinct from every estimate of this identity: a new landmark (paper Fig. 1).

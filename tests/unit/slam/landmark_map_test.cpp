@@ -33,12 +33,31 @@ void collect(const LandmarkStore& store, MapNodeHandle at, std::set<std::uint32_
   }
 }
 
-TEST(LandmarkStore, BitsForIdIsTheTrieDepth) {
+TEST(LandmarkStore, BaseEightDigitsForIdAreTheTrieDepth) {
   EXPECT_EQ(bits_for_id(0), 0u);
   EXPECT_EQ(bits_for_id(1), 1u);
   EXPECT_EQ(bits_for_id(15), 4u);
   EXPECT_EQ(bits_for_id(16), 5u);
   EXPECT_EQ(bits_for_id(0xFFFFFFFFu), 32u);
+  EXPECT_EQ(levels_for_id(0), 0u);
+  EXPECT_EQ(levels_for_id(7), 1u);
+  EXPECT_EQ(levels_for_id(8), 2u);
+  EXPECT_EQ(levels_for_id(9999), 5u);  // 10,000 landmarks: 5 levels (14 in a binary trie)
+  EXPECT_EQ(levels_for_id(0xFFFFFFFFu), 11u);
+  EXPECT_EQ(trie_digit(0643, 3), 6u);  // octal: one digit per level, most significant first
+  EXPECT_EQ(trie_digit(0643, 2), 4u);
+  EXPECT_EQ(trie_digit(0643, 1), 3u);
+}
+
+TEST(LandmarkStore, SymmetricCovarianceKeepsTheUpperTriangleExactly) {
+  Eigen::Matrix3d m;
+  m << 4.0, 0.1, 0.2, 0.1, 5.0, 0.3, 0.2, 0.3, 6.0;
+  const SymmetricMatrix3 s = m;
+  EXPECT_EQ(s.full(), m);
+  EXPECT_EQ(s(2, 1), 0.3);
+  EXPECT_EQ(s(1, 2), 0.3);
+  EXPECT_EQ(sizeof(LandmarkEstimate), 80u);
+  EXPECT_EQ(sizeof(MapNode), 64u);  // one cache line per trie node
 }
 
 TEST(LandmarkStore, DenseIdsMakeABalancedTreeAndFindEveryLeaf) {
@@ -47,8 +66,8 @@ TEST(LandmarkStore, DenseIdsMakeABalancedTreeAndFindEveryLeaf) {
   for (std::uint32_t id = 0; id < 16; ++id) {
     insert(store, map, id);
   }
-  EXPECT_EQ(map.depth, 4);
-  EXPECT_EQ(store.nodes_in_use(), 31u);  // a full binary tree over 16 leaves
+  EXPECT_EQ(map.depth, 2);
+  EXPECT_EQ(store.nodes_in_use(), 19u);  // 16 leaves under 2 interior nodes under the root
   EXPECT_EQ(store.estimates_in_use(), 16u);
   for (std::uint32_t id = 0; id < 16; ++id) {
     const MapNode* leaf = store.find_leaf(map, id);
@@ -68,13 +87,13 @@ TEST(LandmarkStore, DenseIdsMakeABalancedTreeAndFindEveryLeaf) {
   EXPECT_EQ(store.estimates_in_use(), 0u);
 }
 
-TEST(LandmarkStore, GrowsANewRootWhenAnIdNeedsMoreBits) {
+TEST(LandmarkStore, GrowsANewRootWhenAnIdNeedsMoreDigits) {
   LandmarkStore store(100, 100);
   LandmarkMap map;
   insert(store, map, 3);
-  EXPECT_EQ(map.depth, 2);
+  EXPECT_EQ(map.depth, 1);
   insert(store, map, 1000);
-  EXPECT_EQ(map.depth, 10);
+  EXPECT_EQ(map.depth, 4);
   ASSERT_NE(store.find_leaf(map, 3), nullptr);
   ASSERT_NE(store.find_leaf(map, 1000), nullptr);
   EXPECT_EQ(store.estimate(store.find_leaf(map, 3)->estimates[0]).mean.x(), 3.0);
@@ -98,10 +117,10 @@ TEST(LandmarkStore, AnUpdateCopiesOnlyThePathAndReleaseRestoresExactCounts) {
   MapNode* leaf = store.mutable_leaf(b, 5, 1);
   ASSERT_NE(leaf, nullptr);
   store.mutable_estimate(*leaf, 0).mean.x() = 42.0;
-  // Root, three interior nodes and the leaf: depth + 1 copies, one estimate copy.
-  EXPECT_EQ(store.counters().path_nodes_copied, 5u);
+  // Root, one interior node and the leaf: depth + 1 copies, one estimate copy.
+  EXPECT_EQ(store.counters().path_nodes_copied, 3u);
   EXPECT_EQ(store.counters().estimates_copied, 1u);
-  EXPECT_EQ(store.nodes_in_use(), nodes_before + 5);
+  EXPECT_EQ(store.nodes_in_use(), nodes_before + 3);
   EXPECT_EQ(store.estimates_in_use(), estimates_before + 1);
   EXPECT_EQ(store.estimate(store.find_leaf(a, 5)->estimates[0]).mean.x(), 5.0);  // a unchanged
   EXPECT_EQ(store.estimate(store.find_leaf(b, 5)->estimates[0]).mean.x(), 42.0);
@@ -114,12 +133,12 @@ TEST(LandmarkStore, AnUpdateCopiesOnlyThePathAndReleaseRestoresExactCounts) {
   for (const std::uint32_t index : in_b) {
     shared += in_a.count(index);
   }
-  EXPECT_EQ(in_b.size(), 31u);
-  EXPECT_EQ(shared, 26u);  // every node off the changed path is still shared
+  EXPECT_EQ(in_b.size(), 19u);
+  EXPECT_EQ(shared, 16u);  // every node off the changed path is still shared
 
   // A second change of the same leaf copies nothing: b owns that path now.
   store.mutable_estimate(*store.mutable_leaf(b, 5, 1), 0).mean.x() = 43.0;
-  EXPECT_EQ(store.counters().path_nodes_copied, 5u);
+  EXPECT_EQ(store.counters().path_nodes_copied, 3u);
   EXPECT_EQ(store.counters().estimates_copied, 1u);
 
   store.release(b);
@@ -139,7 +158,7 @@ TEST(LandmarkStore, ManyParticlesShareAlmostEveryNodeAfterOneChangeEach) {
     insert(store, base, id);
   }
   const std::size_t base_nodes = store.nodes_in_use();
-  EXPECT_EQ(base_nodes, 2047u);
+  EXPECT_EQ(base_nodes, 1171u);  // 1024 leaves + 128 + 16 + 2 interior nodes + the root
   std::vector<LandmarkMap> particles(kParticles, base);
   for (LandmarkMap& map : particles) {
     store.retain(map);
@@ -148,9 +167,9 @@ TEST(LandmarkStore, ManyParticlesShareAlmostEveryNodeAfterOneChangeEach) {
     const auto id = static_cast<std::uint32_t>((i * 37) % kLandmarks);
     store.mutable_estimate(*store.mutable_leaf(particles[i], id, 1), 0).mean.y() = 1.0;
   }
-  // O(N log K): each particle owns only its 11-node path; a copy of every map would be
-  // 100 x 2047 nodes.
-  EXPECT_EQ(store.nodes_in_use(), base_nodes + kParticles * 11);
+  // O(N log K): each particle owns only its 5-node path; a copy of every map would be
+  // 100 x 1171 nodes.
+  EXPECT_EQ(store.nodes_in_use(), base_nodes + kParticles * 5);
   for (LandmarkMap& map : particles) {
     store.release(map);
   }
@@ -160,15 +179,15 @@ TEST(LandmarkStore, ManyParticlesShareAlmostEveryNodeAfterOneChangeEach) {
 }
 
 TEST(LandmarkStore, RefusesAChangeThePoolsCannotHoldAndLeavesTheMapUnchanged) {
-  LandmarkStore store(6, 2);
+  LandmarkStore store(5, 2);
   LandmarkMap map;
-  insert(store, map, 2);  // depth 2: 3 nodes
-  EXPECT_EQ(store.nodes_in_use(), 3u);
+  insert(store, map, 2);  // depth 1: the root and a leaf
+  EXPECT_EQ(store.nodes_in_use(), 2u);
   LandmarkMap sibling = map;
   store.retain(sibling);
-  // Copying the 3-node path of the sibling fits (6 nodes); a new estimate too.
+  // Copying the 2-node path of the sibling fits (4 of 5 nodes); a new estimate too.
   ASSERT_NE(store.mutable_leaf(sibling, 2, 1), nullptr);
-  // A further id of the original needs up to 3 more nodes: none left.
+  // A further id of the original needs up to 2 more nodes: one left.
   EXPECT_EQ(store.mutable_leaf(map, 3, 1), nullptr);
   EXPECT_EQ(store.counters().refused_pool_full, 1u);
   EXPECT_EQ(store.find_leaf(map, 3), nullptr);

@@ -318,18 +318,18 @@ TEST(ParticleFilter, APriorMapIsBuiltOnceAndSharedByEveryParticle) {
     prior[id].estimate.observations = 5;
   }
   filter.start(odometry_at(0, {}), {}, prior.data(), prior.size());
-  EXPECT_EQ(filter.landmarks().nodes_in_use(), 127u);  // one tree of 64 leaves for all 50
+  EXPECT_EQ(filter.landmarks().nodes_in_use(), 73u);  // one tree of 64 leaves (8 x 8, 1 root) for all 50
   EXPECT_EQ(filter.landmarks().estimates_in_use(), 64u);
   EXPECT_EQ(filter.particle(49).map.root, filter.particle(0).map.root);
   EXPECT_EQ(filter.landmarks().use_count(filter.particle(0).map.root), 50u);
-  // One observation per particle copies one 7-node path and one estimate, except for the last
+  // One observation per particle copies one 3-node path and one estimate, except for the last
   // particle: by then it is the only holder of the original path and updates it in place.
   std::vector<core::LandmarkObservation> one(1);
   one[0].landmark_id = 9;
   one[0].point_camera = landmark_position(9);
   one[0].covariance = Eigen::Matrix3d::Identity() * 0.01;
   filter.update(odometry_at(1, {}), as_list(one), Eigen::Isometry3d::Identity());
-  EXPECT_EQ(filter.landmarks().nodes_in_use(), 127u + 49u * 7u);
+  EXPECT_EQ(filter.landmarks().nodes_in_use(), 73u + 49u * 3u);
   EXPECT_EQ(filter.landmarks().estimates_in_use(), 64u + 49u);
   filter.start(odometry_at(0, {}));
   EXPECT_EQ(filter.landmarks().nodes_in_use(), 0u);

@@ -1,18 +1,20 @@
 #pragma once
-// The landmark maps of all particles: FastSLAM's persistent balanced binary tree keyed by
-// landmark identity (paper III; Montemerlo et al.), with path copying over reference-counted
-// pools so that particles share every subtree neither has changed since they became siblings.
+// The landmark maps of all particles: FastSLAM's persistent balanced tree keyed by landmark
+// identity (paper III; Montemerlo et al.), with path copying over reference-counted pools so
+// that particles share every subtree neither has changed since they became siblings.
 //
-// The tree is a binary trie over the bits of the identity: a map of depth d holds ids in
-// [0, 2^d), its leaves sit at level d and the path to id follows id's bits from the most
-// significant one. The descriptor index hands out dense, increasing ids, so the trie is a
-// balanced tree of depth ceil(log2 K) for K identities, and it grows a new root (one level)
-// whenever an id needs one more bit. The leaf of an id holds a short list of spatially
-// distinct 3D Gaussian estimates (paper Fig. 1), each itself shared between particles.
+// The tree is a trie with 8 children per node over the identity written in base 8: a map of
+// depth d holds ids in [0, 8^d), its leaves sit at level d and the path to an id follows its
+// base-8 digits from the most significant one. The descriptor index hands out dense,
+// increasing ids, so the trie is a balanced tree of depth ceil(log8 K) for K identities (5 for
+// 10,000: a third of the binary trie's depth, so a third of the nodes to copy per change), and
+// it grows a new root (one level) whenever an id needs one more digit. A node is one cache
+// line. The leaf of an id holds a short list of spatially distinct 3D Gaussian estimates
+// (paper Fig. 1), each itself shared between particles.
 //
 // Ownership: a LandmarkMap value holds one reference to its root; retain()/release() add or
 // drop whole-map references; mutable_leaf() copies exactly the shared nodes on the path to
-// one id. All memory comes from two SharedPools sized at start-up; when they run short the
+// one id. All memory comes from two CountedPools sized at start-up; when they run short the
 // change is refused up front (never half-done) and counted.
 
 #include <cstddef>
@@ -21,7 +23,7 @@
 #include <Eigen/Core>
 
 #include "stereoscout/core/fixed_vector.hpp"
-#include "stereoscout/core/shared_pool.hpp"
+#include "stereoscout/slam/counted_pool.hpp"
 
 namespace stereoscout::slam {
 
@@ -29,24 +31,58 @@ namespace stereoscout::slam {
 // working limit at or below it.
 inline constexpr std::size_t kMaxEstimatesPerLandmark = 4;
 
+// Children per trie node and the id bits one level consumes.
+inline constexpr unsigned kTrieDigitBits = 3;
+inline constexpr unsigned kTrieFanout = 1U << kTrieDigitBits;
+
+// A symmetric 3x3 matrix kept as its upper triangle: 6 doubles instead of 9, so an estimate
+// is 80 bytes instead of 104 and the filter's 3x3 algebra works on the 6 distinct entries.
+// Converting from and to Eigen is exact.
+struct SymmetricMatrix3 {
+  double xx = 1.0, xy = 0.0, xz = 0.0, yy = 1.0, yz = 0.0, zz = 1.0;  // identity
+
+  SymmetricMatrix3() = default;
+  SymmetricMatrix3(double xx_, double xy_, double xz_, double yy_, double yz_, double zz_)
+      : xx(xx_), xy(xy_), xz(xz_), yy(yy_), yz(yz_), zz(zz_) {}
+  // From any 3x3 Eigen expression, keeping its upper triangle (every covariance the filter
+  // stores is symmetric: it comes from core::symmetrize() or from this type's own algebra).
+  template <class Derived>
+  SymmetricMatrix3(const Eigen::MatrixBase<Derived>& m)  // implicit, like assigning a Matrix3d
+      : xx(m(0, 0)), xy(m(0, 1)), xz(m(0, 2)), yy(m(1, 1)), yz(m(1, 2)), zz(m(2, 2)) {}
+
+  double operator()(Eigen::Index row, Eigen::Index col) const {
+    const Eigen::Index low = row < col ? row : col;
+    const Eigen::Index high = row < col ? col : row;
+    if (low == 0) {
+      return high == 0 ? xx : (high == 1 ? xy : xz);
+    }
+    return low == 1 ? (high == 1 ? yy : yz) : zz;
+  }
+  Eigen::Matrix3d full() const {
+    Eigen::Matrix3d m;
+    m << xx, xy, xz, xy, yy, yz, xz, yz, zz;
+    return m;
+  }
+};
+
 // A 3D Gaussian estimate of one landmark in the map frame.
 struct LandmarkEstimate {
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();
+  SymmetricMatrix3 covariance;
   std::uint32_t observations = 0;  // observations fused into it, the first included
 };
 
 struct MapNode;
-using MapNodeHandle = core::Handle<MapNode>;
-using EstimateHandle = core::Handle<LandmarkEstimate>;
+using MapNodeHandle = PoolIndex<MapNode>;
+using EstimateHandle = PoolIndex<LandmarkEstimate>;
 
-// One node of the trie: interior nodes use `child`, leaves use `estimates`.
-struct MapNode {
-  MapNodeHandle child[2] = {};
+// One node of the trie, one cache line: interior nodes use `child`, leaves use `estimates`.
+struct alignas(64) MapNode {
+  MapNodeHandle child[kTrieFanout] = {};
   core::StaticVector<EstimateHandle, kMaxEstimatesPerLandmark> estimates;
 };
 
-// One particle's map: a root reference and the trie depth (ids below 2^depth).
+// One particle's map: a root reference and the trie depth (ids below 8^depth).
 struct LandmarkMap {
   MapNodeHandle root;
   std::uint8_t depth = 0;
@@ -115,22 +151,28 @@ class LandmarkStore {
       }
       return;
     }
-    for (std::uint32_t bit = 0; bit < 2; ++bit) {
-      if (n.child[bit]) {
-        visit_subtree(n.child[bit], levels_below - 1, (id_prefix << 1) | bit, visit);
+    for (std::uint32_t digit = 0; digit < kTrieFanout; ++digit) {
+      if (n.child[digit]) {
+        visit_subtree(n.child[digit], levels_below - 1, (id_prefix << kTrieDigitBits) | digit, visit);
       }
     }
   }
 
   void release_node(MapNodeHandle handle);
-  MapNodeHandle copy_for_path(MapNodeHandle source, unsigned level, unsigned path_bit);
+  MapNodeHandle copy_for_path(MapNodeHandle source, unsigned level, unsigned path_digit);
 
-  core::SharedPool<MapNode> nodes_;
-  core::SharedPool<LandmarkEstimate> estimates_;
+  CountedPool<MapNode> nodes_;
+  CountedPool<LandmarkEstimate> estimates_;
   LandmarkStoreCounters counters_;
 };
 
-// Bits needed to write `id` (0 for id 0): the depth a map needs to hold it.
+// Bits needed to write `id` (0 for id 0).
 unsigned bits_for_id(std::uint32_t id);
+// Base-8 digits needed to write `id` (0 for id 0): the depth a map needs to hold it.
+unsigned levels_for_id(std::uint32_t id);
+// The digit of `id` that picks the child of a node `level` levels above the leaves.
+inline unsigned trie_digit(std::uint32_t id, unsigned level) {
+  return level == 0 ? 0U : (id >> ((level - 1) * kTrieDigitBits)) & (kTrieFanout - 1);
+}
 
 }  // namespace stereoscout::slam

@@ -25,13 +25,13 @@ core::CameraMount camera_mount_from_config(const core::CameraConfig& camera);
 struct RobotFrameObservation {
   std::uint32_t landmark_id = 0;
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();
+  SymmetricMatrix3 covariance;
 };
 
 // The same observation in the map frame of one particle.
 struct MapFrameObservation {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();
+  SymmetricMatrix3 covariance;
 };
 
 RobotFrameObservation to_robot_frame(const core::LandmarkObservation& observation,
@@ -39,10 +39,13 @@ RobotFrameObservation to_robot_frame(const core::LandmarkObservation& observatio
 // A particle's pose as a 3D transform (rotation about z), made once per particle and update.
 struct PlanarTransform {
   explicit PlanarTransform(const core::Pose2& pose);
-  Eigen::Matrix3d rotation;
+  double cosine;
+  double sine;
   Eigen::Vector3d translation;
 };
 
+// Moves the point and rotates the covariance (R C R^T) about z; the closed form of the
+// planar rotation touches only the entries it changes.
 MapFrameObservation to_map_frame(const RobotFrameObservation& observation, const PlanarTransform& map_from_robot);
 
 // A range/bearing measurement on the floor plane turned into a point observation in the
@@ -53,11 +56,22 @@ core::LandmarkObservation range_bearing_observation(std::uint32_t landmark_id, d
                                                     double range_sigma_m, double bearing_sigma_rad,
                                                     double height_sigma_m);
 
-// Squared Mahalanobis distance of the observation to an estimate, with the innovation
-// covariance S = P + C (estimate plus measurement); +infinity if S is not positive definite.
+// The innovation of an observation against one estimate: delta = z - mean, the inverse of
+// S = P + C (estimate plus measurement) and the squared Mahalanobis distance
+// delta^T S^-1 delta, +infinity if S is not positive definite. The gate uses the distance;
+// the EKF update of the chosen estimate reuses the inverse instead of inverting S again.
+struct Innovation {
+  Eigen::Vector3d delta = Eigen::Vector3d::Zero();
+  SymmetricMatrix3 inverse_covariance;
+  double distance_squared = 0.0;
+};
+Innovation innovation(const LandmarkEstimate& estimate, const MapFrameObservation& observation);
+
 double association_distance_squared(const LandmarkEstimate& estimate, const MapFrameObservation& observation);
 
-// EKF update of an estimate by an observation of it (paper III: "updated using the EKF").
+// EKF update of an estimate by an observation of it (paper III: "updated using the EKF"),
+// given the innovation of that observation against this estimate (finite distance).
+void ekf_update(LandmarkEstimate& estimate, const Innovation& innovation);
 void ekf_update(LandmarkEstimate& estimate, const MapFrameObservation& observation);
 
 // A valid observation has a finite point and a positive definite covariance.
