@@ -62,9 +62,11 @@ const MapNode* LandmarkStore::find_leaf(const LandmarkMap& map, std::uint32_t id
 // A copy of `source` that holds its own references to everything except the child on the
 // path (`path_digit`), which the caller replaces by that child's copy straight away.
 MapNodeHandle LandmarkStore::copy_for_path(MapNodeHandle source, unsigned level, unsigned path_digit) {
-  const MapNodeHandle copy = nodes_.acquire(nodes_.get(source));
+  // The references are taken from the source, which the walk down has just read: the copy
+  // sits in a slot that is usually not in cache yet, and reading it back would wait for it.
+  const MapNode& copied = nodes_.get(source);
+  const MapNodeHandle copy = nodes_.acquire(copied);
   STEREOSCOUT_CHECK(copy, "landmark node pool ran out after its room was checked");
-  const MapNode& copied = nodes_.get(copy);
   if (level > 0) {
     for (unsigned digit = 0; digit < kTrieFanout; ++digit) {
       if (digit != path_digit && copied.child[digit]) {

@@ -91,10 +91,25 @@ void ekf_update(LandmarkEstimate& estimate, const Innovation& innovation) {
   // With h(m) = R^T (m - t) and H = R^T, the gain P H^T (H P H^T + Q)^-1 moved into the map
   // frame is K = P (P + R Q R^T)^-1 = P S^-1: the same update written where the estimate
   // lives. The new covariance P - K P is symmetric; only its upper triangle is computed.
-  const Eigen::Matrix3d p = estimate.covariance.full();
-  const Eigen::Matrix3d gain = p * innovation.inverse_covariance.full();
-  estimate.mean += gain * innovation.delta;
-  const auto reduced = [&](Eigen::Index row, Eigen::Index col) { return p(row, col) - gain.row(row).dot(p.col(col)); };
+  // Plain 3x3 arrays: this runs once per particle and observation, and the small Eigen
+  // products were not inlined.
+  const SymmetricMatrix3& c = estimate.covariance;
+  const SymmetricMatrix3& w = innovation.inverse_covariance;
+  const double p[3][3] = {{c.xx, c.xy, c.xz}, {c.xy, c.yy, c.yz}, {c.xz, c.yz, c.zz}};
+  const double s[3][3] = {{w.xx, w.xy, w.xz}, {w.xy, w.yy, w.yz}, {w.xz, w.yz, w.zz}};
+  const double delta[3] = {innovation.delta.x(), innovation.delta.y(), innovation.delta.z()};
+  double gain[3][3];
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      gain[i][j] = p[i][0] * s[0][j] + p[i][1] * s[1][j] + p[i][2] * s[2][j];
+    }
+  }
+  for (int i = 0; i < 3; ++i) {
+    estimate.mean[i] += gain[i][0] * delta[0] + gain[i][1] * delta[1] + gain[i][2] * delta[2];
+  }
+  const auto reduced = [&](int i, int j) {
+    return p[i][j] - (gain[i][0] * p[0][j] + gain[i][1] * p[1][j] + gain[i][2] * p[2][j]);
+  };
   estimate.covariance = SymmetricMatrix3(reduced(0, 0), reduced(0, 1), reduced(0, 2), reduced(1, 1), reduced(1, 2),
                                          reduced(2, 2));
   ++estimate.observations;
