@@ -23,6 +23,9 @@ std::string default_config_path();
 // against the install tree, then the source tree.
 std::string resolve_data_path(const std::string& path);
 
+int run_explore(int argc, char** argv);
+int run_replay(int argc, char** argv);
+int run_run(int argc, char** argv);
 int run_config(int argc, char** argv);
 int run_eval_disparity(int argc, char** argv);
 int run_eval_map(int argc, char** argv);

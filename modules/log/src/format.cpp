@@ -30,13 +30,14 @@ const char* to_string(RecordType type) {
     case RecordType::gpio_event: return "gpio_event";
     case RecordType::drive_command: return "drive_command";
     case RecordType::end_of_run: return "end_of_run";
+    case RecordType::ground_truth: return "ground_truth";
   }
   return "unknown";
 }
 
 bool is_known(std::uint16_t type) {
   return type >= static_cast<std::uint16_t>(RecordType::run_info) &&
-         type <= static_cast<std::uint16_t>(RecordType::end_of_run);
+         type <= static_cast<std::uint16_t>(RecordType::ground_truth);
 }
 
 std::uint32_t crc32(const std::uint8_t* data, std::size_t size, std::uint32_t previous) {

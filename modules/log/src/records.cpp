@@ -85,6 +85,20 @@ bool decode_odometry(const std::uint8_t* payload, std::size_t size, std::int64_t
   return true;
 }
 
+void encode_ground_truth(const core::Pose2& pose, std::uint8_t* payload) {
+  put_f64(payload, pose.x);
+  put_f64(payload + 8, pose.y);
+  put_f64(payload + 16, pose.theta);
+}
+
+bool decode_ground_truth(const std::uint8_t* payload, std::size_t size, core::Pose2& pose) {
+  if (size != kGroundTruthPayloadBytes) {
+    return false;
+  }
+  pose = core::Pose2{get_f64(payload), get_f64(payload + 8), get_f64(payload + 16)};
+  return std::isfinite(pose.x) && std::isfinite(pose.y) && std::isfinite(pose.theta);
+}
+
 void encode_drive_command(const core::DriveCommand& command, std::uint8_t* payload) {
   put_f64(payload, command.linear_mps);
   put_f64(payload + 8, command.angular_rad_s);

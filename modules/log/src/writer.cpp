@@ -40,6 +40,9 @@ bool LogWriter::open(const std::string& path, std::string& error) {
 
 std::uint8_t* LogWriter::begin(RecordType type, std::int64_t timestamp_ns, std::size_t payload_bytes) {
   std::unique_lock<std::mutex> lock(mutex_);
+  if (options_.wait_when_full && file_ != nullptr && !stopping_) {
+    work_done_.wait(lock, [this] { return queued_ < slots_.size(); });
+  }
   if (file_ == nullptr || begun_ || queued_ == slots_.size() || payload_bytes > options_.max_payload_bytes) {
     ++stats_.records_dropped;
     return nullptr;
@@ -153,6 +156,11 @@ bool LogWriter::write_drive_command(std::int64_t timestamp_ns, const core::Drive
 bool LogWriter::write_gpio_event(std::int64_t timestamp_ns, const GpioEvent& event) {
   return write_record(RecordType::gpio_event, timestamp_ns, kGpioEventPayloadBytes,
                       [&event](std::uint8_t* payload) { encode_gpio_event(event, payload); });
+}
+
+bool LogWriter::write_ground_truth(std::int64_t timestamp_ns, const core::Pose2& pose) {
+  return write_record(RecordType::ground_truth, timestamp_ns, kGroundTruthPayloadBytes,
+                      [&pose](std::uint8_t* payload) { encode_ground_truth(pose, payload); });
 }
 
 bool LogWriter::write_run_info(std::int64_t timestamp_ns, const RunInfo& info) {

@@ -11,16 +11,27 @@ bool LogReplay::open(const std::string& path, std::string& error) {
   if (!reader_.open(path, error)) {
     return false;
   }
-  // Start-up records come first; deliver them and stop at the first sensor record.
+  // Start-up records come first; deliver them and stop at the first sensor record. The
+  // live loop's clock started at the run_info record's time, so the replayed loop starts
+  // there too and its tasks fall due at the same instants (a log without run_info starts at
+  // its first record).
+  bool has_start_time = false;
+  std::int64_t start_ns = 0;
   while (read_next()) {
     if (lookahead_.type != log::RecordType::run_info && lookahead_.type != log::RecordType::config) {
       break;
     }
+    if (lookahead_.type == log::RecordType::run_info && !has_start_time) {
+      has_start_time = true;
+      start_ns = lookahead_.timestamp_ns;
+    }
     deliver(lookahead_);
     has_lookahead_ = false;
   }
-  if (has_lookahead_) {
-    clock_.sleep_until(lookahead_.timestamp_ns);  // the run's clock starts at its first record
+  if (has_start_time) {
+    clock_.sleep_until(start_ns);
+  } else if (has_lookahead_) {
+    clock_.sleep_until(lookahead_.timestamp_ns);
   }
   return true;
 }
@@ -91,6 +102,15 @@ void LogReplay::deliver(const log::LogRecord& record) {
       break;
     case log::RecordType::end_of_run:
       saw_end_of_run_ = log::decode_end_of_run(record.payload, record.size, end_of_run_);
+      end_of_run_ns_ = record.timestamp_ns;
+      break;
+    case log::RecordType::ground_truth:
+      if (log::decode_ground_truth(record.payload, record.size, ground_truth_.pose)) {
+        ground_truth_.timestamp_ns = record.timestamp_ns;
+        has_ground_truth_ = true;
+      } else {
+        ++stats_.invalid_records;
+      }
       break;
     case log::RecordType::drive_command:
       break;  // what the live run commanded; replay recomputes it

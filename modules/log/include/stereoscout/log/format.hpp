@@ -34,6 +34,7 @@ enum class RecordType : std::uint16_t {
   gpio_event = 5,   // line (u16), value (u8)
   drive_command = 6,  // linear m/s, angular rad/s (f64): what the stack commanded
   end_of_run = 7,   // clean end: records written (u64), records dropped (u64)
+  ground_truth = 8,  // simulation only: the true pose x, y, theta (f64) at a kept frame's time
 };
 
 const char* to_string(RecordType type);

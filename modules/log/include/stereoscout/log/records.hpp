@@ -31,6 +31,11 @@ inline constexpr std::size_t kDriveCommandPayloadBytes = 16;
 void encode_drive_command(const core::DriveCommand& command, std::uint8_t* payload);
 bool decode_drive_command(const std::uint8_t* payload, std::size_t size, core::DriveCommand& command);
 
+// ground_truth: x, y, theta (f64); the simulator's true pose, so that a replay scores itself
+inline constexpr std::size_t kGroundTruthPayloadBytes = 3 * 8;
+void encode_ground_truth(const core::Pose2& pose, std::uint8_t* payload);
+bool decode_ground_truth(const std::uint8_t* payload, std::size_t size, core::Pose2& pose);
+
 // gpio_event: line (u16), value (u8)
 struct GpioEvent {
   enum Line : std::uint16_t { emergency_stop = 1, motor_enable = 2 };

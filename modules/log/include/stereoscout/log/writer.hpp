@@ -22,6 +22,10 @@ namespace stereoscout::log {
 struct LogWriterOptions {
   std::size_t queue_slots = 8;
   std::size_t max_payload_bytes = 2 * 640 * 480 + 64;  // one 640x480 stereo frame
+  // Simulation: the loop runs on a virtual clock, so waiting for the disk costs no simulated
+  // time, and a dropped record would make the log depend on thread timing. On the robot a
+  // full queue drops the record (the loop must not wait for the disk).
+  bool wait_when_full = false;
 };
 
 struct LogWriterStats {
@@ -52,6 +56,7 @@ class LogWriter {
   bool write_odometry(const core::OdometryReading& reading);
   bool write_drive_command(std::int64_t timestamp_ns, const core::DriveCommand& command);
   bool write_gpio_event(std::int64_t timestamp_ns, const GpioEvent& event);
+  bool write_ground_truth(std::int64_t timestamp_ns, const core::Pose2& pose);
   // Start-up records (their payloads may be large; written through the same queue).
   bool write_run_info(std::int64_t timestamp_ns, const RunInfo& info);
   bool write_config(std::int64_t timestamp_ns, const std::string& yaml);

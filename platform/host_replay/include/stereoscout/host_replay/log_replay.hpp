@@ -78,6 +78,14 @@ class LogReplay {
   const log::LogReaderStats& reader_stats() const { return reader_.stats(); }
   const log::EndOfRun& end_of_run() const { return end_of_run_; }
   bool saw_end_of_run() const { return saw_end_of_run_; }
+  // The clock time the live run ended at (valid once saw_end_of_run()).
+  std::int64_t end_of_run_ns() const { return end_of_run_ns_; }
+  // The newest ground_truth record visible so far (simulated runs log the true pose).
+  bool latest_ground_truth(std::int64_t& timestamp_ns, core::Pose2& pose) const {
+    timestamp_ns = ground_truth_.timestamp_ns;
+    pose = ground_truth_.pose;
+    return has_ground_truth_;
+  }
 
  private:
   class ReplayCamera final : public platform::Camera {
@@ -127,6 +135,13 @@ class LogReplay {
   std::string config_yaml_;
   log::EndOfRun end_of_run_;
   bool saw_end_of_run_ = false;
+  std::int64_t end_of_run_ns_ = 0;
+  struct StampedPose {
+    std::int64_t timestamp_ns = 0;
+    core::Pose2 pose;
+  };
+  StampedPose ground_truth_;
+  bool has_ground_truth_ = false;
   LogReplayStats stats_;
 };
 

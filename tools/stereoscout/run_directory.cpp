@@ -1,0 +1,306 @@
+#include "run_directory.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "map_eval.hpp"
+#include "map_png.hpp"
+#include "stereoscout/host_sim/ground_truth.hpp"
+#include "stereoscout/occupancy/final_map.hpp"
+#include "stereoscout/occupancy/ros_map.hpp"
+#include "stereoscout/report/json_writer.hpp"
+#include "stereoscout/report/sha256.hpp"
+#include "stereoscout/slam/slam_export.hpp"
+
+namespace stereoscout::cli {
+namespace {
+
+bool write_text(const std::string& path, const std::string& text, std::string& error) {
+  std::ofstream file(path, std::ios::binary);
+  file << text;
+  if (!file.good()) error = path + ": cannot write";
+  return file.good();
+}
+
+void tum_line(std::ostream& out, std::int64_t timestamp_ns, const core::Pose2& pose) {
+  char line[160];
+  std::snprintf(line, sizeof line, "%.9f %.6f %.6f 0 0 0 %.9f %.9f\n", static_cast<double>(timestamp_ns) * 1e-9, pose.x,
+                pose.y, std::sin(pose.theta / 2.0), std::cos(pose.theta / 2.0));
+  out << line;
+}
+
+// The ML particle's trajectory, root first: update index -> pose.
+std::map<std::uint32_t, core::Pose2> ml_trajectory(const slam::ParticleFilter& filter) {
+  std::map<std::uint32_t, core::Pose2> poses;
+  const slam::TrajectoryTree& tree = filter.trajectory();
+  for (slam::TrajectoryNodeHandle n = filter.ml_trajectory_node(); n; n = tree.parent(n)) {
+    poses[tree.get(n).update_index] = tree.get(n).pose;
+  }
+  return poses;
+}
+
+// Root-mean-square position error against the true poses of the updates. The map frame is
+// the odometry frame at start, which the simulator puts at the true start pose, so no
+// alignment is fitted: a constant offset counts as error.
+void score_trajectories(const stack::Stack& stack, RunScore& score) {
+  const std::map<std::uint32_t, core::Pose2> estimate = ml_trajectory(stack.filter());
+  double filter_sum = 0.0;
+  double odometry_sum = 0.0;
+  std::size_t count = 0;
+  for (const stack::UpdateRecord& record : stack.update_records()) {
+    if (!record.has_ground_truth) return;
+    const auto it = estimate.find(record.update_index);
+    if (it == estimate.end()) continue;
+    filter_sum += (it->second.translation() - record.ground_truth.translation()).squaredNorm();
+    odometry_sum += (record.odometry.translation() - record.ground_truth.translation()).squaredNorm();
+    ++count;
+  }
+  if (count == 0) return;
+  score.ate_rmse_m = std::sqrt(filter_sum / static_cast<double>(count));
+  score.odometry_ate_rmse_m = std::sqrt(odometry_sum / static_cast<double>(count));
+}
+
+occupancy::RosMap ros_map_of(const host_sim::GroundTruthGrid& grid) {
+  occupancy::RosMap map;
+  map.geometry.width_cells = grid.width;
+  map.geometry.height_cells = grid.height;
+  map.geometry.resolution_m = grid.resolution_m;
+  map.geometry.origin_x_m = grid.origin.x();
+  map.geometry.origin_y_m = grid.origin.y();
+  map.cells.resize(grid.cells.size());
+  for (std::size_t i = 0; i < grid.cells.size(); ++i) {
+    map.cells[i] = grid.cells[i] == host_sim::GroundTruthGrid::free       ? occupancy::CellState::free
+                   : grid.cells[i] == host_sim::GroundTruthGrid::occupied ? occupancy::CellState::occupied
+                                                                          : occupancy::CellState::unknown;
+  }
+  return map;
+}
+
+void score_map(const occupancy::RosMap& map, const core::SystemConfig& config, const RunContext& context,
+               RunScore& score) {
+  if (context.world == nullptr) return;
+  const host_sim::GroundTruthGrid truth = host_sim::rasterize_world(
+      *context.world, config.grid.resolution_m, config.sim.floor_tolerance_m, config.robot.height_m);
+  const host_sim::GroundTruthGrid reachable =
+      host_sim::reachable_free_space(truth, context.world->start.translation(), config.robot.radius_m);
+  const occupancy::RosMap truth_map = ros_map_of(truth);
+  const occupancy::RosMap reachable_map = ros_map_of(reachable);
+  const MapEvaluation evaluation = evaluate_map(map, truth_map, &reachable_map);
+  score.coverage = evaluation.coverage();
+  score.map_agreement = evaluation.accuracy();
+}
+
+std::string write_trajectories(const stack::Stack& stack, const std::string& out, std::string& error) {
+  std::ostringstream trajectory;
+  slam::write_tum_trajectory(trajectory, stack.filter().trajectory(), stack.filter().ml_trajectory_node());
+  std::ostringstream odometry;
+  std::ostringstream truth;
+  bool has_truth = !stack.update_records().empty();
+  for (const stack::UpdateRecord& record : stack.update_records()) {
+    tum_line(odometry, record.timestamp_ns, record.odometry);
+    if (record.has_ground_truth) tum_line(truth, record.timestamp_ns, record.ground_truth);
+    has_truth = has_truth && record.has_ground_truth;
+  }
+  if (!write_text(out + "/trajectory.tum", trajectory.str(), error)) return error;
+  if (!write_text(out + "/odometry.tum", odometry.str(), error)) return error;
+  if (has_truth && !write_text(out + "/groundtruth.tum", truth.str(), error)) return error;
+  return {};
+}
+
+std::string write_maps(const stack::Stack& stack, const core::SystemConfig& config, const std::string& out,
+                       occupancy::RosMap& map) {
+  const std::unique_ptr<occupancy::OccupancyGrid> grid = occupancy::build_final_map(
+      stack.filter().trajectory(), stack.filter().ml_trajectory_node(), stack.grid().scans(),
+      config.grid.final_map_resolution_m, config.grid.final_map_margin_m, occupancy::LogOddsModel::from_config(config.grid));
+  map = occupancy::classify_grid(*grid, occupancy::CellThresholds::from_config(config.grid));
+  std::string error = occupancy::write_ros_map(map, out + "/map.pgm", out + "/map.yaml");
+  if (!error.empty()) return error;
+  MapOverlays overlays;
+  for (const auto& [index, pose] : ml_trajectory(stack.filter())) overlays.estimated_trajectory.push_back(pose.translation());
+  for (const core::Pose2& pose : stack.odometry_path()) overlays.raw_odometry.push_back(pose.translation());
+  for (const Eigen::Vector2d& waypoint : stack.explorer().plan().waypoints) overlays.plan.push_back(waypoint);
+  return write_map_png(map, overlays, out + "/map.png");
+}
+
+void write_timing(report::JsonWriter& json, const scheduler::Scheduler& scheduler) {
+  json.begin_object("timing");
+  for (std::size_t i = 0; i < scheduler.task_count(); ++i) {
+    const scheduler::TaskStats task = scheduler.stats(i);
+    json.begin_object(task.name)
+        .unsigned_integer("runs", task.runs)
+        .integer("budget_us", task.budget_us)
+        .integer("median_us", task.median_us)
+        .integer("p99_us", task.p99_us)
+        .integer("max_us", task.max_us)
+        .unsigned_integer("overruns", task.overruns)
+        .unsigned_integer("deferred", task.deferred)
+        .unsigned_integer("missed_periods", task.missed_periods)
+        .unsigned_integer("failures", task.failures)
+        .end_object();
+  }
+  json.end_object();
+}
+
+void pool(report::JsonWriter& json, const char* name, std::size_t capacity, std::size_t high_water,
+          std::uint64_t exhausted) {
+  json.begin_object(name)
+      .unsigned_integer("capacity", capacity)
+      .unsigned_integer("high_water", high_water)
+      .unsigned_integer("exhausted", exhausted)
+      .end_object();
+}
+
+void write_pools(report::JsonWriter& json, const stack::Stack& stack, const core::SystemConfig& config) {
+  const slam::ParticleFilter& filter = stack.filter();
+  const core::PoolStats nodes = filter.landmarks().node_stats();
+  const core::PoolStats estimates = filter.landmarks().estimate_stats();
+  const core::PoolStats trajectory = filter.trajectory().stats();
+  const occupancy::JustInTimeGridStats& grid = stack.grid().stats();
+  const vision::DescriptorIndexStats& index = stack.vision().index().stats();
+  const std::uint64_t scans = stack.update_records().size();
+  const auto ring = static_cast<std::uint64_t>(config.grid.scan_history);
+  json.begin_object("pools");
+  pool(json, "particles", static_cast<std::size_t>(filter.config().particle_capacity), filter.particle_count(), 0);
+  pool(json, "landmark_nodes", nodes.capacity, nodes.high_water, nodes.exhausted);
+  pool(json, "landmark_estimates", estimates.capacity, estimates.high_water, estimates.exhausted);
+  pool(json, "trajectory_nodes", trajectory.capacity, trajectory.high_water, trajectory.exhausted);
+  pool(json, "grid_cache", stack.grid().cache_capacity(), static_cast<std::size_t>(grid.grids_held_max), grid.evictions);
+  pool(json, "scan_history", static_cast<std::size_t>(ring), static_cast<std::size_t>(std::min(scans, ring)),
+       scans > ring ? scans - ring : 0);
+  pool(json, "descriptor_index", index.capacity, index.entries, index.refused);
+  json.end_object();
+}
+
+void write_counters(report::JsonWriter& json, const stack::Stack& stack) {
+  const stack::StackCounters& c = stack.counters();
+  json.begin_object("stack")
+      .unsigned_integer("ticks", c.ticks)
+      .unsigned_integer("frames_captured", c.frames_captured)
+      .unsigned_integer("frames_kept", c.frames_kept)
+      .unsigned_integer("frames_skipped_busy", c.frames_skipped_busy)
+      .unsigned_integer("frames_expired", c.frames_expired)
+      .unsigned_integer("capture_failures", c.capture_failures)
+      .unsigned_integer("odometry_readings", c.odometry_readings)
+      .unsigned_integer("odometry_rejected", c.odometry_rejected)
+      .unsigned_integer("updates_refused", c.updates_refused)
+      .unsigned_integer("vision_failures", c.vision_failures)
+      .unsigned_integer("rollups", c.rollups)
+      .unsigned_integer("emergency_stop_ticks", c.emergency_stop_ticks)
+      .unsigned_integer("log_records_staged", c.log_records_staged)
+      .unsigned_integer("log_stage_overflow", c.log_stage_overflow)
+      .unsigned_integer("log_records_refused", c.log_records_refused)
+      .unsigned_integer("heap_allocations_in_sift", c.heap_allocations_in_sift)
+      .end_object();
+  const explore::ExploreCounters& e = stack.explorer().counters();
+  json.begin_object("explorer")
+      .text("state", explore::to_string(stack.explorer().state()))
+      .unsigned_integer("goals_chosen", e.goals_chosen)
+      .unsigned_integer("goals_reached", e.goals_reached)
+      .unsigned_integer("goals_abandoned", e.goals_abandoned)
+      .unsigned_integer("goal_failures", e.goal_failures)
+      .unsigned_integer("goals_blacklisted", e.goals_blacklisted)
+      .unsigned_integer("plan_failures", e.plan_failures)
+      .unsigned_integer("replans", e.replans)
+      .unsigned_integer("safety_stops", e.safety_stops)
+      .unsigned_integer("looks", e.looks)
+      .end_object();
+  const slam::FilterCounters& f = stack.filter().counters();
+  json.begin_object("filter")
+      .unsigned_integer("observations_used", f.observations_used)
+      .unsigned_integer("observations_invalid", f.observations_invalid)
+      .unsigned_integer("estimates_added", f.estimates_added)
+      .unsigned_integer("estimates_refused_list_full", f.estimates_refused_list_full)
+      .unsigned_integer("changes_refused_pool_full", f.changes_refused_pool_full)
+      .unsigned_integer("updates_refused_trajectory_full", f.updates_refused_trajectory_full)
+      .end_object();
+}
+
+void optional_number(report::JsonWriter& json, const char* key, double value) {
+  if (value < 0.0) {
+    json.null(key);
+  } else {
+    json.number(key, value);
+  }
+}
+
+std::string report_json(const stack::Stack& stack, const core::SystemConfig& config, const RunContext& context,
+                        const RunScore& score, const std::map<std::string, std::string>& digests) {
+  const occupancy::JustInTimeGridStats& grid = stack.grid().stats();
+  report::JsonWriter json;
+  json.begin_object()
+      .text("command", context.command)
+      .text("world", context.world_name)
+      .integer("seed", config.run.seed)
+      .integer("particles", static_cast<std::int64_t>(stack.filter().particle_count()))
+      .text("localization", stack::to_string(stack.localization()))
+      .text("stop_reason", stack::to_string(stack.stop_reason()));
+  optional_number(json, "coverage", score.coverage);
+  optional_number(json, "ate_rmse_m", score.ate_rmse_m);
+  optional_number(json, "odometry_ate_rmse_m", score.odometry_ate_rmse_m);
+  optional_number(json, "map_agreement", score.map_agreement);
+  if (context.has_collisions) {
+    json.unsigned_integer("collisions", context.collisions).unsigned_integer("person_contacts", context.person_contacts);
+  } else {
+    json.null("collisions").null("person_contacts");
+  }
+  json.unsigned_integer("updates", stack.counters().updates)
+      .unsigned_integer("landmarks", score.landmarks)
+      .unsigned_integer("landmark_identities", stack.landmark_count())
+      .number("grids_held_mean", grid.mean_grids_held())
+      .unsigned_integer("grids_held_max", grid.grids_held_max)
+      .unsigned_integer("resamplings", stack.filter().counters().resamplings)
+      .number("sim_time_s", stack.time_s())
+      .number("wall_time_s", context.wall_time_s)
+      .number("distance_m", context.distance_m);
+  for (const auto& [key, value] : context.extra_numbers) json.number(key.c_str(), value);
+  write_timing(json, stack.scheduler());
+  write_pools(json, stack, config);
+  json.unsigned_integer("heap_allocations_in_loop", stack.counters().heap_allocations_in_loop);
+  write_counters(json, stack);
+  json.begin_object("outputs_sha256");
+  for (const auto& [file, digest] : digests) json.text(file.c_str(), digest);
+  json.end_object();
+  json.end_object();
+  return json.str();
+}
+
+}  // namespace
+
+std::string sha256_of_file(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) return {};
+  report::Sha256 hash;
+  std::vector<char> buffer(1 << 20);
+  while (file) {
+    file.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+    hash.update(reinterpret_cast<const std::uint8_t*>(buffer.data()), static_cast<std::size_t>(file.gcount()));
+  }
+  return hash.finish_hex();
+}
+
+std::string write_run_directory(const stack::Stack& stack, const core::SystemConfig& config, const RunContext& context,
+                                const std::string& out, RunScore& score) {
+  std::string error;
+  if (!write_trajectories(stack, out, error).empty()) return error;
+  std::ostringstream ply;
+  score.landmarks = slam::write_landmarks_ply(ply, stack.filter().landmarks(), stack.filter().ml_map(),
+                                              static_cast<std::uint32_t>(config.filter.export_min_observations));
+  if (!write_text(out + "/landmarks.ply", ply.str(), error)) return error;
+  occupancy::RosMap map;
+  error = write_maps(stack, config, out, map);
+  if (!error.empty()) return error;
+  score_trajectories(stack, score);
+  score_map(map, config, context, score);
+  std::map<std::string, std::string> digests;
+  std::vector<std::string> files = {"map.pgm", "map.yaml", "map.png", "trajectory.tum", "odometry.tum", "landmarks.ply"};
+  if (!stack.update_records().empty() && stack.update_records()[0].has_ground_truth) files.push_back("groundtruth.tum");
+  if (!context.log_file.empty()) files.push_back(context.log_file);
+  for (const std::string& file : files) digests[file] = sha256_of_file(out + "/" + file);
+  write_text(out + "/report.json", report_json(stack, config, context, score, digests), error);
+  return error;
+}
+
+}  // namespace stereoscout::cli

@@ -1,0 +1,48 @@
+#pragma once
+// The run directory of design.md section 4, written at the end of `explore`, `replay` and
+// `run`: map.pgm + map.yaml (final map of the ML trajectory), map.png (map, estimated
+// trajectory, raw odometry, last plan), trajectory.tum, odometry.tum, groundtruth.tum (when
+// the true pose is known), landmarks.ply, and report.json (docs/report.md) with a SHA-256 of
+// every other file, the sensor log included when it is in the directory.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "stereoscout/core/system_config.hpp"
+#include "stereoscout/host_sim/world.hpp"
+#include "stereoscout/stack/stack.hpp"
+
+namespace stereoscout::cli {
+
+// What the command knows beyond the stack.
+struct RunContext {
+  std::string command;                         // explore, replay, run
+  std::string world_name;                      // empty on the robot
+  const host_sim::World* world = nullptr;      // ground truth for coverage and map agreement
+  bool has_collisions = false;                 // the simulator counts them
+  std::uint64_t collisions = 0;
+  std::uint64_t person_contacts = 0;
+  double distance_m = 0.0;                     // driven (simulator), 0 if unknown
+  double wall_time_s = 0.0;
+  std::string log_file;                        // file name inside the run directory, or empty
+  std::vector<std::pair<std::string, double>> extra_numbers;   // e.g. replay damage counts
+};
+
+struct RunScore {
+  double coverage = -1.0;        // < 0: unknown (no ground truth)
+  double map_agreement = -1.0;
+  double ate_rmse_m = -1.0;
+  double odometry_ate_rmse_m = -1.0;
+  std::size_t landmarks = 0;
+};
+
+// Writes everything into `out` (which must exist). Returns an empty string on success, else
+// an error naming the file. `score` receives the figures for the command's summary line.
+std::string write_run_directory(const stack::Stack& stack, const core::SystemConfig& config, const RunContext& context,
+                                const std::string& out, RunScore& score);
+
+// SHA-256 of a file's bytes as lower-case hex ("" when it cannot be read).
+std::string sha256_of_file(const std::string& path);
+
+}  // namespace stereoscout::cli

@@ -1,0 +1,20 @@
+#pragma once
+// Runs a started stack until it ends, showing progress on a terminal (simulated or robot
+// time, coverage where the ground truth is known, landmarks, updates and their rate) and
+// staying quiet when stderr is not a terminal (CI, scripts, pipes).
+
+#include <functional>
+
+#include "stereoscout/stack/stack.hpp"
+
+namespace stereoscout::cli {
+
+struct LoopHooks {
+  std::function<double()> coverage;          // fraction 0..1, or empty when unknown
+  std::function<bool()> should_stop;         // e.g. a replayed log ran out, Ctrl-C
+  bool progress = true;                      // still only on a terminal
+};
+
+void run_to_end(stack::Stack& stack, const LoopHooks& hooks);
+
+}  // namespace stereoscout::cli
