@@ -36,50 +36,6 @@ void disparity_from_depth(const cv::Mat& depth_right, double focal_baseline, cv:
   }
 }
 
-// The camera cannot see the floor closer than h f / (rows - 1 - c_y) along the optical axis
-// (about 1 m for the paper's head at 0.6 m): a low obstacle there is invisible, so a scan must
-// not clear those cells. Each column's ray therefore starts where its floor becomes visible;
-// an obstacle closer than that marks only its own cell. (The occupancy module's insert()
-// starts every ray at the camera, which erased low boxes and table edges as the robot came
-// close to them; see docs/results.md.)
-class BlindZoneInserter {
- public:
-  BlindZoneInserter(const core::CameraConfig& camera, double resolution_m)
-      : resolution_m_(resolution_m), blind_m_(static_cast<std::size_t>(camera.width_px)) {
-    const double rows_below_centre = std::max(1.0, camera.height_px - 1 - camera.principal_y_px);
-    const double forward_m = camera.mount_height_m * camera.focal_px / rows_below_centre;
-    for (std::size_t u = 0; u < blind_m_.size(); ++u) {
-      const double lateral = (static_cast<double>(u) - camera.principal_x_px) / camera.focal_px;
-      blind_m_[u] = forward_m * std::sqrt(1.0 + lateral * lateral);
-    }
-  }
-
-  void insert(const core::DepthScan& scan, const core::Pose2& pose, occupancy::OccupancyGrid& grid) const {
-    for (std::size_t u = 0; u < scan.columns.size() && u < blind_m_.size(); ++u) {
-      const core::DepthScanColumn& column = scan.columns[u];
-      if (column.kind == core::DepthScanColumn::Kind::invalid) continue;
-      const Eigen::Vector2d end(column.x_robot_m, column.y_robot_m);
-      const Eigen::Vector2d along = end - scan.origin_robot;
-      const double length = along.norm();
-      const bool obstacle = column.kind == core::DepthScanColumn::Kind::obstacle;
-      // The farthest floor point of a free column often lies in the cell of the wall behind
-      // it: stop a cell short so that the wall's base is not cleared.
-      const double reach = obstacle ? length : length - resolution_m_;
-      if (reach <= blind_m_[u] && !obstacle) continue;
-      const Eigen::Vector2d start =
-          length <= blind_m_[u] ? end : Eigen::Vector2d(scan.origin_robot + along * (blind_m_[u] / length));
-      const Eigen::Vector2d stop = scan.origin_robot + along * (reach / length);
-      occupancy::ScanPoint point{static_cast<float>(stop.x()), static_cast<float>(stop.y()), column.kind};
-      occupancy::ScanView view{start.x(), start.y(), &point, 1};
-      grid.insert(view, pose);
-    }
-  }
-
- private:
-  double resolution_m_;
-  std::vector<double> blind_m_;
-};
-
 struct GroundTruthCoverage {
   host_sim::GroundTruthGrid reachable;
   std::size_t reachable_cells = 0;
@@ -159,7 +115,6 @@ ExploreGtResult run_explore_gt(const core::SystemConfig& config, const host_sim:
                                   vision::calibration_from_config(config.camera), mount);
   core::DepthScan scan;
   scanner.allocate(scan);
-  const BlindZoneInserter inserter(config.camera, config.grid.resolution_m);
   cv::Mat left(config.camera.height_px, config.camera.width_px, CV_8UC1);
   cv::Mat right(config.camera.height_px, config.camera.width_px, CV_8UC1);
   cv::Mat depth(config.camera.height_px, config.camera.width_px, CV_32FC1);
@@ -202,7 +157,7 @@ ExploreGtResult run_explore_gt(const core::SystemConfig& config, const host_sim:
       renderer.render(pose, simulator.pan_rad(), simulator.time_s(), frame++, left, right, &depth);
       disparity_from_depth(depth, focal_baseline, disparity);
       scanner.compute(disparity, simulator.pan_rad(), simulator.time_ns(), scan);
-      inserter.insert(scan, pose, grid);
+      grid.insert(scan, pose);
       classify_grid(grid, thresholds, cells);
       last_update_pose = pose;
       last_update_camera_heading = camera_heading;

@@ -13,6 +13,7 @@ namespace {
 // A ray whose end cell lies further than this many grid spans from the grid is a broken
 // measurement (or a units bug), not geometry: skipping it bounds the line walk.
 constexpr double kFarLimitInGridSpans = 4.0;
+constexpr float kMaxFloorVisibleMm = 65535.0F;
 
 }  // namespace
 
@@ -48,7 +49,10 @@ CellState CellThresholds::classify(float log_odds) const {
 }
 
 OccupancyGrid::OccupancyGrid(const GridGeometry& geometry, const LogOddsModel& model)
-    : geometry_(geometry), model_(model), cells_(new float[geometry.cell_count()]) {
+    : geometry_(geometry),
+      model_(model),
+      cells_(new float[geometry.cell_count()]),
+      hit_at_camera_height_(new std::uint8_t[geometry.cell_count()]) {
   STEREOSCOUT_CHECK(geometry.width_cells > 0 && geometry.height_cells > 0 && geometry.resolution_m > 0.0,
                     "occupancy grid needs a positive size and resolution");
   clear();
@@ -56,18 +60,21 @@ OccupancyGrid::OccupancyGrid(const GridGeometry& geometry, const LogOddsModel& m
 
 void OccupancyGrid::clear() {
   std::fill(cells_.get(), cells_.get() + geometry_.cell_count(), 0.0F);
+  std::fill(hit_at_camera_height_.get(), hit_at_camera_height_.get() + geometry_.cell_count(), std::uint8_t{0});
   counts_ = {};
 }
 
 void OccupancyGrid::copy_from(const OccupancyGrid& other) {
   STEREOSCOUT_CHECK(geometry_.same_as(other.geometry_), "OccupancyGrid::copy_from needs the same geometry");
   std::memcpy(cells_.get(), other.cells_.get(), geometry_.cell_count() * sizeof(float));
+  std::memcpy(hit_at_camera_height_.get(), other.hit_at_camera_height_.get(), geometry_.cell_count());
   counts_ = other.counts_;
 }
 
 bool OccupancyGrid::same_cells_as(const OccupancyGrid& other) const {
   return geometry_.same_as(other.geometry_) &&
-         std::memcmp(cells_.get(), other.cells_.get(), geometry_.cell_count() * sizeof(float)) == 0;
+         std::memcmp(cells_.get(), other.cells_.get(), geometry_.cell_count() * sizeof(float)) == 0 &&
+         std::memcmp(hit_at_camera_height_.get(), other.hit_at_camera_height_.get(), geometry_.cell_count()) == 0;
 }
 
 bool OccupancyGrid::cell_of(double x_m, double y_m, int& cell_x, int& cell_y) const {
@@ -85,9 +92,15 @@ void OccupancyGrid::add(int cell_x, int cell_y, float delta) {
   cell = std::clamp(cell + delta, model_.min, model_.max);
 }
 
-// Integer line walk (Bresenham) from the start cell to the end cell: every cell but the last
-// is passed through (miss); the last is where the column ends.
-void OccupancyGrid::cast_ray(double start_x, double start_y, double end_x, double end_y, bool end_is_obstacle) {
+void OccupancyGrid::hit(int cell_x, int cell_y, bool at_camera_height) {
+  if (!geometry_.contains(cell_x, cell_y)) return;
+  add(cell_x, cell_y, model_.hit);
+  hit_at_camera_height_[index(cell_x, cell_y)] = at_camera_height ? 1U : 0U;
+}
+
+// Start and end cells of a ray; false (counted) when an end is not finite or absurdly far.
+bool OccupancyGrid::cells_of(double start_x, double start_y, double end_x, double end_y, int& x0, int& y0, int& x1,
+                             int& y1) {
   const double span = kFarLimitInGridSpans * (geometry_.width_cells + geometry_.height_cells);
   const double fx0 = std::floor((start_x - geometry_.origin_x_m) / geometry_.resolution_m);
   const double fy0 = std::floor((start_y - geometry_.origin_y_m) / geometry_.resolution_m);
@@ -96,20 +109,28 @@ void OccupancyGrid::cast_ray(double start_x, double start_y, double end_x, doubl
   // Written so that NaN fails every comparison and is rejected.
   if (!(std::abs(fx0) < span && std::abs(fy0) < span && std::abs(fx1) < span && std::abs(fy1) < span)) {
     ++counts_.rays_rejected;
-    return;
+    return false;
   }
-  ++counts_.rays;
-  int x = static_cast<int>(fx0);
-  int y = static_cast<int>(fy0);
-  const int x1 = static_cast<int>(fx1);
-  const int y1 = static_cast<int>(fy1);
+  x0 = static_cast<int>(fx0);
+  y0 = static_cast<int>(fy0);
+  x1 = static_cast<int>(fx1);
+  y1 = static_cast<int>(fy1);
+  return true;
+}
+
+namespace {
+
+// Integer line walk (Bresenham) from (x, y) to (x1, y1): calls pass(cell) for every cell but
+// the last.
+template <typename Pass>
+void walk_line(int x, int y, int x1, int y1, Pass&& pass) {
   const int dx = std::abs(x1 - x);
   const int dy = -std::abs(y1 - y);
   const int step_x = x < x1 ? 1 : -1;
   const int step_y = y < y1 ? 1 : -1;
   int error = dx + dy;
   while (x != x1 || y != y1) {
-    add(x, y, model_.miss);
+    pass(x, y);
     const int twice_error = 2 * error;
     if (twice_error >= dy) {
       error += dy;
@@ -120,21 +141,85 @@ void OccupancyGrid::cast_ray(double start_x, double start_y, double end_x, doubl
       y += step_y;
     }
   }
-  add(x1, y1, end_is_obstacle ? model_.hit : model_.miss);
+}
+
+}  // namespace
+
+// Every cell but the last is passed through (miss); the last is where the column ends.
+void OccupancyGrid::cast_ray(double start_x, double start_y, double end_x, double end_y, bool end_is_obstacle,
+                             bool at_camera_height) {
+  int x0 = 0;
+  int y0 = 0;
+  int x1 = 0;
+  int y1 = 0;
+  if (!cells_of(start_x, start_y, end_x, end_y, x0, y0, x1, y1)) return;
+  ++counts_.rays;
+  walk_line(x0, y0, x1, y1, [this](int x, int y) { add(x, y, model_.miss); });
+  if (end_is_obstacle) {
+    hit(x1, y1, at_camera_height);
+  } else {
+    add(x1, y1, model_.miss);
+  }
+}
+
+void OccupancyGrid::clear_camera_height_hits(double start_x, double start_y, double end_x, double end_y) {
+  int x0 = 0;
+  int y0 = 0;
+  int x1 = 0;
+  int y1 = 0;
+  if (!cells_of(start_x, start_y, end_x, end_y, x0, y0, x1, y1)) return;
+  walk_line(x0, y0, x1, y1, [this](int x, int y) {
+    if (geometry_.contains(x, y) && hit_at_camera_height_[index(x, y)] != 0U) add(x, y, model_.miss);
+  });
+}
+
+ScanPoint ScanPoint::from_column(const core::DepthScanColumn& column) {
+  // Whole millimetres, saturated: NaN or negative -> 0 (visible from the origin), beyond
+  // 65.535 m -> never (no floor is that far anyway).
+  const float mm = column.floor_visible_from_m * 1000.0F;
+  const float clamped = mm > 0.0F ? std::min(mm, kMaxFloorVisibleMm) : 0.0F;
+  return {column.x_robot_m, column.y_robot_m, column.kind, column.obstacle_at_camera_height,
+          static_cast<std::uint16_t>(std::lround(clamped))};
+}
+
+void OccupancyGrid::insert_column(const Eigen::Vector2d& origin, const Eigen::Vector2d& end, const ScanPoint& point) {
+  const bool obstacle = point.kind == core::DepthScanColumn::Kind::obstacle;
+  const double visible_from = point.floor_visible_from_m();
+  const Eigen::Vector2d along = end - origin;
+  const double length = along.norm();
+  if (!std::isfinite(length)) {
+    ++counts_.rays_rejected;
+    return;
+  }
+  const double reach = obstacle ? length : length - geometry_.resolution_m;
+  const auto at = [&](double distance) { return Eigen::Vector2d(origin + along * (distance / length)); };
+  // The blind zone: only obstacles at the camera's height would have been seen there.
+  const double blind_end = std::min(visible_from, reach);
+  if (blind_end > 0.0) {
+    const Eigen::Vector2d stop = at(blind_end);
+    clear_camera_height_hits(origin.x(), origin.y(), stop.x(), stop.y());
+  }
+  if (obstacle && length <= visible_from) {
+    cast_ray(end.x(), end.y(), end.x(), end.y(), true, point.obstacle_at_camera_height);  // its own cell only
+    return;
+  }
+  if (!obstacle && !(reach > visible_from)) return;  // no visible floor on this ray
+  const Eigen::Vector2d start = at(visible_from);
+  const Eigen::Vector2d stop = obstacle ? end : at(reach);
+  cast_ray(start.x(), start.y(), stop.x(), stop.y(), obstacle, point.obstacle_at_camera_height);
 }
 
 void OccupancyGrid::insert(const ScanView& scan, const core::Pose2& pose) {
   const double c = std::cos(pose.theta);
   const double s = std::sin(pose.theta);
-  const double start_x = pose.x + c * scan.origin_x_robot_m - s * scan.origin_y_robot_m;
-  const double start_y = pose.y + s * scan.origin_x_robot_m + c * scan.origin_y_robot_m;
+  const Eigen::Vector2d origin(pose.x + c * scan.origin_x_robot_m - s * scan.origin_y_robot_m,
+                               pose.y + s * scan.origin_x_robot_m + c * scan.origin_y_robot_m);
   for (std::size_t i = 0; i < scan.count; ++i) {
     const ScanPoint& point = scan.points[i];
     if (point.kind == core::DepthScanColumn::Kind::invalid) continue;
     const double px = point.x_robot_m;
     const double py = point.y_robot_m;
-    cast_ray(start_x, start_y, pose.x + c * px - s * py, pose.y + s * px + c * py,
-             point.kind == core::DepthScanColumn::Kind::obstacle);
+    insert_column(origin, Eigen::Vector2d(pose.x + c * px - s * py, pose.y + s * px + c * py), point);
   }
 }
 
@@ -143,14 +228,13 @@ void OccupancyGrid::insert(const core::DepthScan& scan, const core::Pose2& pose)
   const double s = std::sin(pose.theta);
   const double ox = scan.origin_robot.x();
   const double oy = scan.origin_robot.y();
-  const double start_x = pose.x + c * ox - s * oy;
-  const double start_y = pose.y + s * ox + c * oy;
+  const Eigen::Vector2d origin(pose.x + c * ox - s * oy, pose.y + s * ox + c * oy);
   for (const core::DepthScanColumn& column : scan.columns) {
     if (column.kind == core::DepthScanColumn::Kind::invalid) continue;
-    const double px = column.x_robot_m;
-    const double py = column.y_robot_m;
-    cast_ray(start_x, start_y, pose.x + c * px - s * py, pose.y + s * px + c * py,
-             column.kind == core::DepthScanColumn::Kind::obstacle);
+    const ScanPoint point = ScanPoint::from_column(column);
+    const double px = point.x_robot_m;
+    const double py = point.y_robot_m;
+    insert_column(origin, Eigen::Vector2d(pose.x + c * px - s * py, pose.y + s * px + c * py), point);
   }
 }
 

@@ -30,7 +30,7 @@ void ScanHistory::record(std::uint32_t update_index, const core::DepthScan& scan
       ++counts_.columns_truncated;
       continue;
     }
-    points[entry.count++] = {column.x_robot_m, column.y_robot_m, column.kind};
+    points[entry.count++] = ScanPoint::from_column(column);
   }
   newest_ = update_index;
   ++counts_.recorded;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "stereoscout/core/check.hpp"
 #include "stereoscout/vision/dense_disparity.hpp"
@@ -17,6 +18,24 @@ ObstacleScanParams scan_params_from_config(const core::VisionConfig& vision, con
   return params;
 }
 
+namespace {
+
+// Floor distance from the camera centre's foot to where the bottom row's ray in `column` meets
+// the floor; +infinity when that ray does not go down (the column never sees the floor).
+float floor_visible_from(const StereoCalibration& calibration, const core::CameraMount& mount, int column) {
+  const Eigen::Isometry3d robot_from_camera = core::robot_from_camera(mount, 0.0);
+  const Eigen::Vector3d origin = robot_from_camera.translation();
+  const Eigen::Vector3d direction =
+      robot_from_camera.linear() *
+      Eigen::Vector3d((column - calibration.principal_x_px) / calibration.focal_px,
+                      (calibration.height_px - 1 - calibration.principal_y_px) / calibration.focal_px, 1.0);
+  if (!(direction.z() < 0.0)) return std::numeric_limits<float>::infinity();
+  const double scale = -origin.z() / direction.z();
+  return static_cast<float>(scale * direction.head<2>().norm());
+}
+
+}  // namespace
+
 ObstacleScanner::ObstacleScanner(const ObstacleScanParams& params, const StereoCalibration& calibration,
                                  const core::CameraMount& mount)
     : params_(params),
@@ -24,7 +43,12 @@ ObstacleScanner::ObstacleScanner(const ObstacleScanParams& params, const StereoC
       mount_(mount),
       per_column_(static_cast<std::size_t>(std::max(params.min_obstacle_pixels, 1))),
       columns_(static_cast<std::size_t>(calibration.width_px)),
-      nearest_(static_cast<std::size_t>(calibration.width_px) * per_column_) {}
+      nearest_(static_cast<std::size_t>(calibration.width_px) * per_column_),
+      floor_visible_from_m_(static_cast<std::size_t>(calibration.width_px)) {
+  for (int column = 0; column < calibration.width_px; ++column) {
+    floor_visible_from_m_[static_cast<std::size_t>(column)] = floor_visible_from(calibration, mount, column);
+  }
+}
 
 void ObstacleScanner::allocate(core::DepthScan& scan) const {
   scan.columns.assign(static_cast<std::size_t>(calibration_.width_px), core::DepthScanColumn{});
@@ -67,6 +91,9 @@ void ObstacleScanner::add_point(int column, const Eigen::Vector3d& point, const 
   } else if (point.z() > params_.floor_tolerance_m && point.z() < params_.robot_height_m &&
              range <= params_.max_range_m) {
     keep_nearest(state, &nearest_[static_cast<std::size_t>(column) * per_column_], {range, point.x(), point.y()});
+    if (std::fabs(point.z() - origin.z()) <= params_.floor_tolerance_m) {
+      state.nearest_at_camera_height_m = std::min(state.nearest_at_camera_height_m, range);
+    }
   }
   // Points below the floor or above the robot are ignored.
 }
@@ -102,12 +129,14 @@ void ObstacleScanner::compute(const cv::Mat& disparity, double pan_rad, std::int
     if (static_cast<std::size_t>(state.obstacle_points) == per_column_) {
       // The farthest of the nearest min_obstacle_pixels points: confirmed by that many.
       const Candidate& confirmed = nearest_[column * per_column_ + per_column_ - 1];
-      out = {static_cast<float>(confirmed.x_m), static_cast<float>(confirmed.y_m), core::DepthScanColumn::Kind::obstacle};
+      const bool at_camera_height = state.nearest_at_camera_height_m <= confirmed.range_m + params_.same_surface_depth_m;
+      out = {static_cast<float>(confirmed.x_m), static_cast<float>(confirmed.y_m), core::DepthScanColumn::Kind::obstacle,
+             floor_visible_from_m_[column], at_camera_height};
     } else if (state.has_floor) {
       out = {static_cast<float>(state.farthest_floor.x_m), static_cast<float>(state.farthest_floor.y_m),
-             core::DepthScanColumn::Kind::free};
+             core::DepthScanColumn::Kind::free, floor_visible_from_m_[column], false};
     } else {
-      out = {0.0F, 0.0F, core::DepthScanColumn::Kind::invalid};
+      out = {0.0F, 0.0F, core::DepthScanColumn::Kind::invalid, floor_visible_from_m_[column], false};
     }
   }
 }

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -39,14 +40,104 @@ TEST(OccupancyGrid, ObstacleRayMissesAlongTheWayAndHitsAtTheEnd) {
   EXPECT_EQ(grid.insert_counts().rays, 1u);
 }
 
-TEST(OccupancyGrid, FreeColumnMissesItsEndCellAndInvalidDoesNothing) {
+TEST(OccupancyGrid, FreeColumnStopsOneCellShortOfItsEndAndInvalidDoesNothing) {
   OccupancyGrid grid(small_geometry(), LogOddsModel{});
-  grid.insert(one_column(0.35F, 0.0F, Kind::free), core::Pose2{0.05, 0.05, 0.0});
+  // Origin (0.05, 0.05) is cell (10, 10); the end (0.43, 0.05) is cell (14, 10), but the free
+  // ray stops 0.1 m short, in cell (13, 10): the farthest floor point may be a wall's base.
+  grid.insert(one_column(0.38F, 0.0F, Kind::free), core::Pose2{0.05, 0.05, 0.0});
   for (int x = 10; x <= 13; ++x) EXPECT_FLOAT_EQ(grid.log_odds(x, 10), -0.4F) << x;
+  EXPECT_FLOAT_EQ(grid.log_odds(14, 10), 0.0F);
   OccupancyGrid untouched(small_geometry(), LogOddsModel{});
   untouched.insert(one_column(0.35F, 0.0F, Kind::invalid), core::Pose2{});
   OccupancyGrid empty(small_geometry(), LogOddsModel{});
   EXPECT_TRUE(untouched.same_cells_as(empty));
+}
+
+core::DepthScan one_column_visible_from(float x, Kind kind, float floor_visible_from_m) {
+  core::DepthScan scan = one_column(x, 0.0F, kind);
+  scan.columns[0].floor_visible_from_m = floor_visible_from_m;
+  return scan;
+}
+
+TEST(OccupancyGrid, RayStartsWhereTheColumnsFloorBecomesVisible) {
+  OccupancyGrid grid(small_geometry(), LogOddsModel{});
+  // Origin cell (10, 10); floor visible from 0.3 m (cell 13); obstacle at 0.75 m (cell 17).
+  grid.insert(one_column_visible_from(0.7F, Kind::obstacle, 0.3F), core::Pose2{0.05, 0.05, 0.0});
+  for (int x = 10; x < 13; ++x) EXPECT_FLOAT_EQ(grid.log_odds(x, 10), 0.0F) << x;
+  for (int x = 13; x < 17; ++x) EXPECT_FLOAT_EQ(grid.log_odds(x, 10), -0.4F) << x;
+  EXPECT_FLOAT_EQ(grid.log_odds(17, 10), 0.85F);
+}
+
+TEST(OccupancyGrid, ObstacleInsideTheBlindZoneMarksOnlyItsOwnCell) {
+  OccupancyGrid grid(small_geometry(), LogOddsModel{});
+  grid.insert(one_column_visible_from(0.4F, Kind::obstacle, 1.0F), core::Pose2{0.05, 0.05, 0.0});
+  EXPECT_FLOAT_EQ(grid.log_odds(14, 10), 0.85F);
+  for (int x = 0; x < 20; ++x) {
+    if (x != 14) {
+      EXPECT_FLOAT_EQ(grid.log_odds(x, 10), 0.0F) << x;
+    }
+  }
+  // A free column whose visible floor ends within a cell of the blind zone clears nothing.
+  OccupancyGrid untouched(small_geometry(), LogOddsModel{});
+  untouched.insert(one_column_visible_from(0.4F, Kind::free, 0.35F), core::Pose2{0.05, 0.05, 0.0});
+  EXPECT_TRUE(untouched.same_cells_as(OccupancyGrid(small_geometry(), LogOddsModel{})));
+}
+
+// A 0.1 m box 3 m ahead, approached in 7 cm steps (the update trigger) to 0.55 m, where the
+// robot stays for 15 more scans (a look around). The camera (floor visible from 1 m) sees the
+// box's top until it is 1 m x (1 - 0.1 / 0.6) = 0.83 m away; nearer, the box is below the
+// image and the column reports the floor behind it, free up to 5 m.
+float approach_low_box(float floor_visible_from_m) {
+  GridGeometry geometry = small_geometry();
+  geometry.width_cells = 80;
+  OccupancyGrid grid(geometry, LogOddsModel{});
+  constexpr double kBoxFaceX = 3.0;
+  for (int step = 0; step < 50; ++step) {
+    const double robot_x = std::min(0.07 * step, kBoxFaceX - 0.55);
+    const bool box_visible = kBoxFaceX - robot_x > 0.85;
+    const float end = box_visible ? static_cast<float>(kBoxFaceX - robot_x + 0.05) : 5.0F;
+    grid.insert(one_column_visible_from(end, box_visible ? Kind::obstacle : Kind::free, floor_visible_from_m),
+                core::Pose2{robot_x, 0.05, 0.0});
+  }
+  int box_x = 0;
+  int box_y = 0;
+  EXPECT_TRUE(grid.cell_of(kBoxFaceX + 0.05, 0.05, box_x, box_y));
+  return grid.log_odds(box_x, box_y);
+}
+
+TEST(OccupancyGrid, LowBoxSeenFromFarIsNotClearedWhenApproached) {
+  const float blind_aware = approach_low_box(1.0F);
+  EXPECT_EQ(CellThresholds{}.classify(blind_aware), CellState::occupied);
+  EXPECT_FLOAT_EQ(blind_aware, 4.0F);  // 31 hits, clamped; never missed
+  // Rays from the camera (the old insert) erase it: this is the bug the test guards against.
+  EXPECT_EQ(CellThresholds{}.classify(approach_low_box(0.0F)), CellState::free);
+}
+
+// A low box stands 0.6 m ahead, inside the blind zone (seen while it was still in view); a
+// person (an obstacle at the camera's height) steps in front of it at 0.5 m and walks on.
+// The views see the floor from 1 m on.
+TEST(OccupancyGrid, LaterViewsClearAPersonInTheBlindZoneButNotALowBox) {
+  OccupancyGrid grid(small_geometry(), LogOddsModel{});
+  const core::Pose2 pose{0.05, 0.05, 0.0};
+  core::DepthScan person = one_column_visible_from(0.5F, Kind::obstacle, 1.0F);
+  person.columns[0].obstacle_at_camera_height = true;
+  core::DepthScan box = one_column_visible_from(0.6F, Kind::obstacle, 1.0F);
+  for (int i = 0; i < 3; ++i) grid.insert(box, pose);
+  for (int i = 0; i < 3; ++i) grid.insert(person, pose);  // then the person stepped in front
+  EXPECT_FLOAT_EQ(grid.log_odds(15, 10), 2.55F);
+  EXPECT_FLOAT_EQ(grid.log_odds(16, 10), 2.55F);
+  // The view through both cells to a wall at 1.5 m: the person's cell gets a miss per view,
+  // the box's cell (out of view) none; the cells in front of them none (they held nothing).
+  const core::DepthScan wall = one_column_visible_from(1.5F, Kind::obstacle, 1.0F);
+  for (int i = 0; i < 7; ++i) grid.insert(wall, pose);
+  EXPECT_NEAR(grid.log_odds(15, 10), 2.55F - 7 * 0.4F, 1e-5);
+  EXPECT_EQ(CellThresholds{}.classify(grid.log_odds(15, 10)), CellState::unknown);
+  EXPECT_FLOAT_EQ(grid.log_odds(16, 10), 2.55F);
+  for (int x = 10; x < 15; ++x) EXPECT_FLOAT_EQ(grid.log_odds(x, 10), 0.0F) << x;
+  // A later low hit in the person's cell makes it a low obstacle: no longer cleared there.
+  grid.insert(one_column_visible_from(0.5F, Kind::obstacle, 1.0F), pose);
+  grid.insert(wall, pose);
+  EXPECT_NEAR(grid.log_odds(15, 10), 2.55F - 7 * 0.4F + 0.85F, 1e-5);
 }
 
 TEST(OccupancyGrid, PoseRotatesAndTranslatesTheScan) {
@@ -98,12 +189,16 @@ TEST(ScanHistory, KeepsOnlyValidColumnsAndInsertsLikeTheFullScan) {
   ScanHistory history(4, 8);
   core::DepthScan scan;
   scan.origin_robot = {0.1, 0.02};
-  scan.columns = {{0.5F, 0.1F, Kind::obstacle}, {0.4F, 0.0F, Kind::invalid}, {0.3F, -0.2F, Kind::free}};
+  scan.columns = {{0.5F, 0.1F, Kind::obstacle, 0.3F, true},
+                  {0.4F, 0.0F, Kind::invalid, 0.0F, false},
+                  {0.6F, -0.2F, Kind::free, 0.2F, false}};
   history.record(7, scan);
   ScanView view;
   ASSERT_EQ(history.find(7, view), ScanLookup::found);
   ASSERT_EQ(view.count, 2u);
   EXPECT_EQ(view.points[1].kind, Kind::free);
+  EXPECT_EQ(view.points[1].floor_visible_from_mm, 200);
+  EXPECT_TRUE(view.points[0].obstacle_at_camera_height);
   OccupancyGrid from_view(small_geometry(), LogOddsModel{});
   OccupancyGrid from_scan(small_geometry(), LogOddsModel{});
   const core::Pose2 pose{0.13, -0.21, 0.7};

@@ -54,6 +54,27 @@ TEST(ObstacleScan, EmptyFloorIsFreeUpToMaxRange) {
   }
 }
 
+TEST(ObstacleScan, ColumnsSayWhereTheirFloorBecomesVisible) {
+  ScanSetup setup;
+  const core::DepthScan& scan = setup.run(test::Scene{});
+  // Bottom row 239.5 px below the centre, f = 400 px, head at 0.6 m: 0.6 x 400 / 239.5 m
+  // straight ahead, longer towards the image edges by sqrt(1 + ((u - c_x) / f)^2).
+  const double ahead = 0.6 * 400.0 / 239.5;
+  EXPECT_NEAR(scan.columns[320].floor_visible_from_m, ahead * std::sqrt(1.0 + std::pow(0.5 / 400.0, 2)), 1e-5);
+  EXPECT_NEAR(scan.columns[0].floor_visible_from_m, ahead * std::sqrt(1.0 + std::pow(319.5 / 400.0, 2)), 1e-5);
+  // The same after a pan: floor distances do not depend on it.
+  core::DepthScan panned;
+  setup.scanner.allocate(panned);
+  const test::Rendering view = test::render(test::Scene{}, setup.camera, paper_mount(), core::Pose2{});
+  setup.scanner.compute(disparity_from_depth(view.left_depth, setup.camera), 0.7, 5, panned);
+  EXPECT_FLOAT_EQ(panned.columns[100].floor_visible_from_m, scan.columns[100].floor_visible_from_m);
+  // Tilted 10 deg down, the floor comes into view nearer: h / tan(10 deg + atan(239.5 / 400)).
+  ObstacleScanner tilted(ObstacleScanParams{}, StereoCalibration{}, {0.10, 0.0, 0.6, 10.0 * M_PI / 180.0});
+  tilted.compute(disparity_from_depth(view.left_depth, setup.camera), 0.0, 5, panned);
+  const double expected = 0.6 / std::tan(10.0 * M_PI / 180.0 + std::atan(239.5 / 400.0));
+  EXPECT_NEAR(panned.columns[320].floor_visible_from_m, expected, 1e-3);
+}
+
 TEST(ObstacleScan, TenCentimetreBoxShowsUp) {
   test::Scene scene;
   scene.boxes.push_back({{1.5, -0.2, 0.0}, {1.7, 0.2, 0.10}});
@@ -64,10 +85,30 @@ TEST(ObstacleScan, TenCentimetreBoxShowsUp) {
     const core::DepthScanColumn& column = scan.columns[static_cast<std::size_t>(x)];
     ASSERT_EQ(column.kind, Kind::obstacle) << "column " << x;
     EXPECT_NEAR(column.x_robot_m, 1.5, 0.01);
+    EXPECT_FALSE(column.obstacle_at_camera_height) << "column " << x;  // out of view when near
   }
   // Columns far to the side see only floor.
   EXPECT_EQ(scan.columns[20].kind, Kind::free);
   EXPECT_EQ(scan.columns[620].kind, Kind::free);
+}
+
+TEST(ObstacleScan, AnObstacleThroughTheCameraHeightIsMarkedSo) {
+  test::Scene scene;
+  // A person-sized block (0 to 1.7 m) ahead to the right, a low box (0 to 0.5 m) to the left.
+  scene.boxes.push_back({{1.5, -0.6, 0.0}, {1.8, -0.2, 1.7}});
+  scene.boxes.push_back({{1.5, 0.2, 0.0}, {1.8, 0.6, 0.5}});
+  ScanSetup setup;
+  const core::DepthScan& scan = setup.run(scene);
+  for (int x = 380; x < 420; ++x) {
+    const core::DepthScanColumn& column = scan.columns[static_cast<std::size_t>(x)];
+    ASSERT_EQ(column.kind, Kind::obstacle) << "column " << x;
+    EXPECT_TRUE(column.obstacle_at_camera_height) << "column " << x;
+  }
+  for (int x = 220; x < 260; ++x) {
+    const core::DepthScanColumn& column = scan.columns[static_cast<std::size_t>(x)];
+    ASSERT_EQ(column.kind, Kind::obstacle) << "column " << x;
+    EXPECT_FALSE(column.obstacle_at_camera_height) << "column " << x;
+  }
 }
 
 TEST(ObstacleScan, TableTopBelowRobotHeightIsAnObstacleOverhangAboveIsNot) {

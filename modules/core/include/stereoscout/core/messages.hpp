@@ -61,6 +61,15 @@ struct DepthScanColumn {
   float x_robot_m = 0.0F;
   float y_robot_m = 0.0F;
   Kind kind = Kind::invalid;
+  // Distance on the floor from `origin_robot` at which this column's floor becomes visible:
+  // the camera cannot see the floor (nor a low obstacle on it) nearer than that, so the grid
+  // does not clear cells there (0: visible from the origin).
+  float floor_visible_from_m = 0.0F;
+  // An obstacle that also stands at the camera's height (a person, a wall, a cupboard; not a
+  // low box nor a table top): it is in view at every range inside the field of view, the
+  // blind zone included, so a later view through its cell that does not see it means it has
+  // gone (a person walked on).
+  bool obstacle_at_camera_height = false;
 };
 
 struct DepthScan {

@@ -2,9 +2,27 @@
 // A log-odds occupancy grid updated from 2.5D depth scans by ray casting (paper V).
 //
 // Cells hold float log-odds, clamped to [log_odds_min, log_odds_max]. A scan column is a ray
-// from the camera centre on the floor to its end point: every cell the integer line walk
-// passes gets log_odds_miss; the end cell gets log_odds_hit for an obstacle, log_odds_miss
-// for a free column (nothing seen up to the range limit); invalid columns change nothing.
+// on the floor from the camera centre towards its end point, but the camera cannot see the
+// floor in its first metre or so (the column's floor_visible_from_m: a 0.6 m high camera
+// with a 62 deg vertical field of view), where a low box or a table edge is invisible. So:
+//   - the ray starts where the column's floor becomes visible; every cell the integer line
+//     walk passes from there gets log_odds_miss;
+//   - an obstacle column's end cell gets log_odds_hit (an obstacle nearer than the visible
+//     floor marks only its own cell);
+//   - a free column (floor seen up to its end) stops one cell short of its end point: the
+//     farthest floor point often lies in the cell of the wall behind it, which must not be
+//     cleared; nothing is cleared when that leaves no visible floor;
+//   - invalid columns change nothing.
+// People walk on. Each cell remembers whether its last hit came from an obstacle at the
+// camera's height (DepthScanColumn::obstacle_at_camera_height). Such an obstacle is in view
+// at every range, so a ray that passes through the cell without ending there means it has
+// gone: in the blind zone too, such cells get log_odds_miss (other cells there are left alone:
+// a low box may be there, out of view). Without this, a person who passed within a metre of
+// the robot left occupied cells that no later view could clear. It is a rule of insertion,
+// not a timer, so the grid stays a function of the scans along the trajectory (the
+// just-in-time invariant).
+// (Rays that started at the camera cleared a low box as the robot approached it: the floor
+// seen beyond the box, once the box was below the image, erased the box's cells.)
 // Because of the clamps the result depends on the order of insertion, so "the grid of a
 // trajectory" always means its scans inserted in update order.
 
@@ -54,11 +72,18 @@ struct CellThresholds {
   CellState classify(float log_odds) const;
 };
 
-// One valid column of a scan, compact (robot frame at capture time).
+// One valid column of a scan, compact (robot frame at capture time): 12 bytes, so the ring of
+// 4096 scans x 640 columns stays at 31 MB.
 struct ScanPoint {
   float x_robot_m = 0.0F;
   float y_robot_m = 0.0F;
   core::DepthScanColumn::Kind kind = core::DepthScanColumn::Kind::invalid;
+  bool obstacle_at_camera_height = false;
+  std::uint16_t floor_visible_from_mm = 0;  // DepthScanColumn::floor_visible_from_m, whole mm
+
+  // The one conversion both insert() overloads use, so they give identical cells.
+  static ScanPoint from_column(const core::DepthScanColumn& column);
+  double floor_visible_from_m() const { return 0.001 * floor_visible_from_mm; }
 };
 
 // A stored scan as seen by the grid: the camera centre and the valid columns in order.
@@ -105,11 +130,19 @@ class OccupancyGrid {
            static_cast<std::size_t>(cell_x);
   }
   void add(int cell_x, int cell_y, float delta);
-  void cast_ray(double start_x, double start_y, double end_x, double end_y, bool end_is_obstacle);
+  void hit(int cell_x, int cell_y, bool at_camera_height);
+  bool cells_of(double start_x, double start_y, double end_x, double end_y, int& x0, int& y0, int& x1, int& y1);
+  void cast_ray(double start_x, double start_y, double end_x, double end_y, bool end_is_obstacle,
+                bool at_camera_height);
+  // Misses, before the end cell, only the cells whose last hit was at the camera's height.
+  void clear_camera_height_hits(double start_x, double start_y, double end_x, double end_y);
+  // One column: origin and end point in the map frame.
+  void insert_column(const Eigen::Vector2d& origin, const Eigen::Vector2d& end, const ScanPoint& point);
 
   GridGeometry geometry_;
   LogOddsModel model_;
   std::unique_ptr<float[]> cells_;
+  std::unique_ptr<std::uint8_t[]> hit_at_camera_height_;  // 1: the cell's last hit was
   InsertCounts counts_;
 };
 

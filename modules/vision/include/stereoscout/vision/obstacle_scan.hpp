@@ -17,6 +17,15 @@
 // obstacles are ignored and farther floor is reported as free up to the cap.
 // A table top at 0.75 m is below a 1.2 m robot, so it is an obstacle even though the space
 // under it is free floor: the robot cannot drive under it.
+// Every column also carries floor_visible_from_m: where the ray of the image's bottom
+// row in that column meets the floor, measured on the floor from `origin_robot` (about 1 m
+// for the paper's head at 0.6 m). Nearer floor, and a low obstacle on it, is out of view, so
+// the occupancy grid must not clear cells there. It does not depend on the pan angle (a turn
+// about the vertical axis keeps floor distances), so it is computed once per column.
+// An obstacle column is also marked obstacle_at_camera_height when the column holds an
+// obstacle point within floor_tolerance_m of the camera's height no more than
+// same_surface_depth_m behind the obstacle: such an obstacle (a person, a wall) stays in view
+// at any range, so the grid may clear it when a later view looks through its cell.
 
 #include <cstdint>
 #include <vector>
@@ -36,6 +45,9 @@ struct ObstacleScanParams {
   double robot_height_m = 1.2;
   double max_range_m = 6.0;
   int min_obstacle_pixels = 4;
+  // How far behind a column's nearest obstacle point a point at the camera's height still
+  // counts as the same obstacle (a person's legs and chest, a wall's face).
+  double same_surface_depth_m = 0.15;
 };
 
 ObstacleScanParams scan_params_from_config(const core::VisionConfig& vision, const core::RobotConfig& robot);
@@ -61,6 +73,7 @@ class ObstacleScanner {
     int obstacle_points = 0;  // entries used in this column's slice of nearest_
     bool has_floor = false;
     Candidate farthest_floor;
+    double nearest_at_camera_height_m = 1e9;  // range of the nearest obstacle point there
   };
   void reset_columns();
   void add_point(int column, const Eigen::Vector3d& point, const Eigen::Vector3d& origin);
@@ -72,6 +85,7 @@ class ObstacleScanner {
   std::size_t per_column_;                 // min_obstacle_pixels
   std::vector<ColumnState> columns_;       // one per image column, sized at construction
   std::vector<Candidate> nearest_;         // per column: its nearest obstacle points, sorted
+  std::vector<float> floor_visible_from_m_;  // per column, from the calibration and mount
 };
 
 }  // namespace stereoscout::vision
