@@ -5,12 +5,7 @@
 namespace stereoscout::slam {
 
 unsigned bits_for_id(std::uint32_t id) {
-  unsigned bits = 0;
-  while (id != 0) {
-    ++bits;
-    id >>= 1;
-  }
-  return bits;
+  return id == 0 ? 0U : 32U - static_cast<unsigned>(__builtin_clz(id));  // every lookup needs it
 }
 
 unsigned levels_for_id(std::uint32_t id) { return (bits_for_id(id) + kTrieDigitBits - 1) / kTrieDigitBits; }
