@@ -1,0 +1,173 @@
+// The whole stack through the `stereoscout` command (issue 8), short versions: a small
+// world, a 320 x 240 camera and few particles, so that each run takes seconds. The full lab
+// runs are `stereoscout explore` (docs/results.md).
+//  - two runs with the same seed give the same output files (SHA-256 in report.json);
+//  - `replay` of the recorded log gives the same output files as the live run;
+//  - a log with flipped bytes and a truncated log replay to the end, damage counted;
+//  - the tick loop does not touch the heap (outside OpenCV's SIFT, counted apart);
+//  - report.json has every key docs/report.md promises.
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "stereoscout/test/command.hpp"
+
+namespace stereoscout {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kWorld = R"(
+name: two_rooms
+seed: 5
+ceiling_height: 2.6
+start: [1.2, 1.2, 20]
+floor: {type: tile, texture: tile, brightness: 0.5, contrast: 0.5}
+ceiling: {texture: low, brightness: 0.8, contrast: 0.2}
+walls:
+  - {points: [[0, 0], [7, 0], [7, 5], [0, 5], [0, 0]], texture: brick, brightness: 0.5, contrast: 0.7}
+  - {points: [[4, 0], [4, 1.6]], texture: wood, brightness: 0.5, contrast: 0.7}
+  - {points: [[4, 2.8], [4, 5]], texture: wood, brightness: 0.5, contrast: 0.7}
+boxes:
+  - {center: [2.2, 3.6], size: [0.8, 0.6], z: [0, 0.15], texture: wood, brightness: 0.5, contrast: 0.7}
+)";
+
+// A small camera and map so that a run of a few simulated seconds takes seconds.
+std::string config_text(const std::string& world_path) {
+  return "%YAML:1.0\n"
+         "run: {seed: 7, max_time_s: 12, world: \"" + world_path + "\"}\n"
+         "camera: {width_px: 320, height_px: 240, focal_px: 200, principal_x_px: 159.5, principal_y_px: 119.5}\n"
+         "vision: {max_features: 300, dense_num_disparities: 32, max_disparity_px: 64}\n"
+         "filter: {particles: 20, particle_capacity: 20, landmark_node_capacity: 200000, "
+         "landmark_estimate_capacity: 100000, trajectory_node_capacity: 20000}\n"
+         "grid: {width_cells: 160, height_cells: 160, final_map_resolution_m: 0.05, scan_history: 512}\n";
+}
+
+class StackRun : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    dir_ = fs::temp_directory_path() / ("stereoscout_stack_" + name + "_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    std::ofstream(dir_ / "world.yaml") << kWorld;
+    std::ofstream(dir_ / "config.yaml") << config_text((dir_ / "world.yaml").string());
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  test::CommandResult explore(const std::string& out) {
+    return test::run_stereoscout("explore --config " + (dir_ / "config.yaml").string() + " --out " + (dir_ / out).string());
+  }
+  test::CommandResult replay(const fs::path& log, const std::string& out) {
+    return test::run_stereoscout("replay " + log.string() + " --out " + (dir_ / out).string());
+  }
+  std::string report(const std::string& out) const {
+    std::ifstream file(dir_ / out / "report.json");
+    std::stringstream text;
+    text << file.rdbuf();
+    return text.str();
+  }
+
+  fs::path dir_;
+};
+
+// The "outputs_sha256" object of a report: file name -> digest.
+std::map<std::string, std::string> output_digests(const std::string& report) {
+  std::map<std::string, std::string> digests;
+  const std::size_t start = report.find("\"outputs_sha256\": {");
+  if (start == std::string::npos) return digests;
+  std::istringstream lines(report.substr(start, report.find('}', start) - start));
+  std::string line;
+  std::getline(lines, line);
+  while (std::getline(lines, line)) {
+    const std::size_t a = line.find('"');
+    const std::size_t b = line.find('"', a + 1);
+    const std::size_t c = line.find('"', b + 1);
+    const std::size_t d = line.find('"', c + 1);
+    if (d == std::string::npos) continue;
+    digests[line.substr(a + 1, b - a - 1)] = line.substr(c + 1, d - c - 1);
+  }
+  return digests;
+}
+
+// The number after "key": in a report (or -1 when missing / null).
+double report_number(const std::string& report, const std::string& key) {
+  const std::size_t at = report.find("\"" + key + "\": ");
+  if (at == std::string::npos) return -1.0;
+  const std::string rest = report.substr(at + key.size() + 4, 32);
+  if (rest.compare(0, 4, "null") == 0) return -1.0;
+  return std::stod(rest);
+}
+
+TEST_F(StackRun, SameSeedSameOutputsNoHeapInLoopAndEveryReportKey) {
+  const test::CommandResult first = explore("a");
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  const test::CommandResult second = explore("b");
+  ASSERT_EQ(second.exit_code, 0) << second.output;
+  const std::string a = report("a");
+  const std::map<std::string, std::string> digests = output_digests(a);
+  for (const char* file : {"map.pgm", "map.yaml", "map.png", "trajectory.tum", "odometry.tum", "groundtruth.tum",
+                           "landmarks.ply", "sensors.log"}) {
+    ASSERT_EQ(digests.count(file), 1U) << file << " missing from outputs_sha256\n" << a;
+    EXPECT_EQ(digests.at(file).size(), 64U) << file;
+  }
+  EXPECT_EQ(digests, output_digests(report("b")));
+  EXPECT_GT(report_number(a, "updates"), 10.0) << a;
+  EXPECT_GT(report_number(a, "landmarks"), 0.0) << a;
+  EXPECT_EQ(report_number(a, "heap_allocations_in_loop"), 0.0) << a;
+  for (const char* key : {"coverage", "ate_rmse_m", "odometry_ate_rmse_m", "map_agreement", "collisions", "updates",
+                          "landmarks", "grids_held_mean", "grids_held_max", "resamplings", "sim_time_s", "wall_time_s"}) {
+    EXPECT_GE(report_number(a, key), 0.0) << key << " missing or null\n" << a;
+  }
+  for (const char* key : {"\"timing\": {", "\"observation_update\": {", "\"median_us\"", "\"p99_us\"", "\"max_us\"",
+                          "\"overruns\"", "\"pools\": {", "\"landmark_nodes\": {", "\"capacity\"", "\"high_water\"",
+                          "\"exhausted\""}) {
+    EXPECT_NE(a.find(key), std::string::npos) << key << "\n" << a;
+  }
+}
+
+TEST_F(StackRun, ReplayGivesTheLiveOutputsAndSurvivesDamage) {
+  const test::CommandResult live = explore("live");
+  ASSERT_EQ(live.exit_code, 0) << live.output;
+  const fs::path log = dir_ / "live" / "sensors.log";
+  const test::CommandResult replayed = replay(log, "replay");
+  ASSERT_EQ(replayed.exit_code, 0) << replayed.output;
+  std::map<std::string, std::string> expected = output_digests(report("live"));
+  expected.erase("sensors.log");
+  EXPECT_EQ(output_digests(report("replay")), expected);
+  EXPECT_EQ(report_number(report("replay"), "log_damaged_places"), 0.0);
+
+  // Flip bytes in the middle of the log (inside some record), and cut it at two thirds.
+  const auto size = static_cast<std::streamoff>(fs::file_size(log));
+  fs::copy_file(log, dir_ / "flipped.log");
+  {
+    std::fstream file(dir_ / "flipped.log", std::ios::in | std::ios::out | std::ios::binary);
+    for (std::streamoff at : {size / 3, size / 2}) {
+      file.seekp(at);
+      file.write("\xff\x00\xff\x00\xff\x00\xff\x00", 8);
+    }
+  }
+  fs::copy_file(log, dir_ / "cut.log");
+  fs::resize_file(dir_ / "cut.log", static_cast<std::uintmax_t>(size * 2 / 3));
+
+  const test::CommandResult flipped = replay(dir_ / "flipped.log", "flipped");
+  ASSERT_EQ(flipped.exit_code, 0) << flipped.output;
+  EXPECT_GE(report_number(report("flipped"), "log_damaged_places"), 1.0) << report("flipped");
+  EXPECT_GT(report_number(report("flipped"), "updates"), 0.0);
+
+  const test::CommandResult cut = replay(dir_ / "cut.log", "cut");
+  ASSERT_EQ(cut.exit_code, 0) << cut.output;
+  EXPECT_GT(report_number(report("cut"), "log_truncated_bytes"), 0.0) << report("cut");
+  EXPECT_EQ(report_number(report("cut"), "log_end_of_run_seen"), 0.0);
+  EXPECT_LT(report_number(report("cut"), "sim_time_s"), report_number(report("live"), "sim_time_s"));
+}
+
+}  // namespace
+}  // namespace stereoscout
