@@ -29,12 +29,14 @@ Eigen::Vector3d landmark_position(std::uint32_t id) {
 }
 
 // Nodes one particle copies when its 200 observations hit distinct leaves of a depth-d tree:
-// level l holds at most min(2^l, 200) distinct path nodes.
+// the level l below the root holds at most min(8^l, 200) distinct path nodes.
 std::size_t path_nodes_per_update(std::size_t landmarks) {
-  const unsigned depth = bits_for_id(static_cast<std::uint32_t>(landmarks - 1));
+  const unsigned depth = levels_for_id(static_cast<std::uint32_t>(landmarks - 1));
   std::size_t nodes = 0;
+  std::size_t level_width = 1;
   for (unsigned level = 0; level <= depth; ++level) {
-    nodes += std::min<std::size_t>(std::size_t{1} << level, kObservationsPerUpdate);
+    nodes += std::min<std::size_t>(level_width, kObservationsPerUpdate);
+    level_width = std::min<std::size_t>(level_width * kTrieFanout, kObservationsPerUpdate);
   }
   return nodes;
 }
