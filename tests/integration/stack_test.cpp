@@ -126,6 +126,21 @@ TEST_F(StackRun, SameSeedSameOutputsNoHeapInLoopAndEveryReportKey) {
                           "landmarks", "grids_held_mean", "grids_held_max", "resamplings", "sim_time_s", "wall_time_s"}) {
     EXPECT_GE(report_number(a, key), 0.0) << key << " missing or null\n" << a;
   }
+  // The budget check: generous budgets pass, 1 us budgets fail (no timing is asserted).
+  auto profile = [&](const char* name, long long budget_us) {
+    std::ofstream file(dir_ / name);
+    file << "%YAML:1.0\nbudgets:\n";
+    for (const char* task : {"safety", "capture", "odometry", "observation_update", "grid_rollup", "replan", "drive",
+                             "logging"}) {
+      file << "  " << task << ": {budget_us: " << budget_us << "}\n";
+    }
+    return (dir_ / name).string();
+  };
+  const std::string report_path = (dir_ / "a" / "report.json").string();
+  EXPECT_EQ(test::run_stereoscout("check-budgets " + report_path + " --profile " + profile("loose.yaml", 100000000)).exit_code, 0);
+  const test::CommandResult tight = test::run_stereoscout("check-budgets " + report_path + " --profile " + profile("tight.yaml", 1));
+  EXPECT_EQ(tight.exit_code, 1) << tight.output;
+  EXPECT_NE(tight.output.find("OVER BUDGET"), std::string::npos) << tight.output;
   for (const char* key : {"\"timing\": {", "\"observation_update\": {", "\"median_us\"", "\"p99_us\"", "\"max_us\"",
                           "\"overruns\"", "\"pools\": {", "\"landmark_nodes\": {", "\"capacity\"", "\"high_water\"",
                           "\"exhausted\""}) {

@@ -12,6 +12,7 @@ constexpr Command kCommands[] = {
     {"explore", "explore a simulated world with the whole stack; writes maps, trajectories, log, report.json", run_explore},
     {"replay", "re-run the whole stack on a recorded sensor log (byte-identical outputs)", run_replay},
     {"run", "run the whole stack on the robot computer (V4L2 cameras, serial base, GPIO)", run_run},
+    {"check-budgets", "check a run's report.json against a target's budget profile (config/budgets/)", run_check_budgets},
     {"config", "check a config file, print the effective config or the key reference", run_config},
     {"sim-render", "render the simulated stereo pair and ground-truth depth seen from a pose", run_sim_render},
     {"world-map", "write the ground-truth occupancy map and reachable free space of a world", run_world_map},

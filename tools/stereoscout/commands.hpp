@@ -26,6 +26,7 @@ std::string resolve_data_path(const std::string& path);
 int run_explore(int argc, char** argv);
 int run_replay(int argc, char** argv);
 int run_run(int argc, char** argv);
+int run_check_budgets(int argc, char** argv);
 int run_config(int argc, char** argv);
 int run_eval_disparity(int argc, char** argv);
 int run_eval_map(int argc, char** argv);
