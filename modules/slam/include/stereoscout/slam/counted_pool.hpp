@@ -6,14 +6,18 @@
 //     fit in half a cache line; there is no generation to store or check on every get();
 //   - reference counts sit in their own dense array, so retaining the 7 off-path siblings of
 //     a copied node touches one or two cache lines, not seven nodes;
-//   - every slot is built at start-up (all pages mapped before the first update) and free
-//     slots are kept on a stack, so a release followed by an acquire reuses the warm slot.
+//   - free slots are kept on a stack, so a release followed by an acquire reuses the warm
+//     slot, and the slot that comes a few acquisitions later is prefetched for writing.
+// Like core::FixedPool, the storage is reserved at start-up but an object is built in a slot
+// only when the slot is handed out, so untouched capacity costs no physical memory.
 // A stale index is not caught as a generation check would catch it; debug checks still catch
 // a retain or release of a slot whose count is already zero.
 
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <new>
+#include <type_traits>
 
 #include "stereoscout/core/check.hpp"
 #include "stereoscout/core/fixed_pool.hpp"
@@ -31,10 +35,13 @@ struct PoolIndex {
 
 template <class T>
 class CountedPool {
+  // Slots are reused without running destructors in between.
+  static_assert(std::is_trivially_destructible_v<T>, "CountedPool holds trivially destructible objects");
+
  public:
   explicit CountedPool(std::size_t capacity)
       : capacity_(capacity),
-        slots_(new T[capacity + 1]),
+        storage_(new Storage[capacity + 1]),
         references_(new std::uint32_t[capacity + 1]()),
         free_stack_(new std::uint32_t[capacity]) {
     STEREOSCOUT_CHECK(capacity < 0xFFFFFFFFU, "pool capacity exceeds the 32-bit index range");
@@ -58,9 +65,9 @@ class CountedPool {
     if (free_count_ > kPrefetchDistance) {
       // The slot handed out a few acquisitions from now is rarely in cache: start fetching
       // it for writing now, so the copy into it does not wait (a hint, never a result).
-      __builtin_prefetch(&slots_[free_stack_[free_count_ - kPrefetchDistance]], 1);
+      __builtin_prefetch(storage_[free_stack_[free_count_ - kPrefetchDistance]].bytes, 1);
     }
-    slots_[index] = value;
+    new (storage_[index].bytes) T(value);
     references_[index] = 1;
     ++stats_.acquired;
     ++stats_.in_use;
@@ -81,7 +88,7 @@ class CountedPool {
     if (--references_[slot.index] > 0) {
       return false;
     }
-    before_free(slots_[slot.index]);
+    before_free(*object_at(slot.index));
     free_stack_[free_count_++] = slot.index;
     --stats_.in_use;
     return true;
@@ -92,11 +99,11 @@ class CountedPool {
 
   T& get(PoolIndex<T> slot) {
     STEREOSCOUT_DEBUG_CHECK(slot.index != 0 && slot.index <= capacity_, "CountedPool::get out of range");
-    return slots_[slot.index];
+    return *object_at(slot.index);
   }
   const T& get(PoolIndex<T> slot) const {
     STEREOSCOUT_DEBUG_CHECK(slot.index != 0 && slot.index <= capacity_, "CountedPool::get out of range");
-    return slots_[slot.index];
+    return *object_at(slot.index);
   }
   std::uint32_t use_count(PoolIndex<T> slot) const { return references_[slot.index]; }
   bool is_shared(PoolIndex<T> slot) const { return references_[slot.index] > 1; }
@@ -115,9 +122,17 @@ class CountedPool {
 
  private:
   static constexpr std::size_t kPrefetchDistance = 4;
+  struct Storage {
+    alignas(T) unsigned char bytes[sizeof(T)];
+  };
+
+  T* object_at(std::size_t index) { return std::launder(reinterpret_cast<T*>(storage_[index].bytes)); }
+  const T* object_at(std::size_t index) const {
+    return std::launder(reinterpret_cast<const T*>(storage_[index].bytes));
+  }
 
   std::size_t capacity_;
-  std::unique_ptr<T[]> slots_;                 // slot 0 unused
+  std::unique_ptr<Storage[]> storage_;  // slot 0 unused
   std::unique_ptr<std::uint32_t[]> references_;
   std::unique_ptr<std::uint32_t[]> free_stack_;
   std::size_t free_count_ = 0;
