@@ -79,9 +79,15 @@ occupancy::RosMap ros_map_of(const host_sim::GroundTruthGrid& grid) {
   return map;
 }
 
-void score_map(const occupancy::RosMap& map, const core::SystemConfig& config, const RunContext& context,
+// Scored on the navigation grid the robot explored with (the ML grid at grid.resolution_m,
+// the ground truth's resolution, holding every scan of the ML trajectory), not on the 1 cm
+// final map: there, cells between two rays stay unknown at a distance, which would count
+// against coverage although the robot has seen the space.
+void score_map(const stack::Stack& stack, const core::SystemConfig& config, const RunContext& context,
                RunScore& score) {
-  if (context.world == nullptr) return;
+  const occupancy::OccupancyGrid* grid = stack.grid().ml_grid();
+  if (context.world == nullptr || grid == nullptr) return;
+  const occupancy::RosMap map = occupancy::classify_grid(*grid, occupancy::CellThresholds::from_config(config.grid));
   const host_sim::GroundTruthGrid truth = host_sim::rasterize_world(
       *context.world, config.grid.resolution_m, config.sim.floor_tolerance_m, config.robot.height_m);
   const host_sim::GroundTruthGrid reachable =
@@ -293,7 +299,7 @@ std::string write_run_directory(const stack::Stack& stack, const core::SystemCon
   error = write_maps(stack, config, out, map);
   if (!error.empty()) return error;
   score_trajectories(stack, score);
-  score_map(map, config, context, score);
+  score_map(stack, config, context, score);
   std::map<std::string, std::string> digests;
   std::vector<std::string> files = {"map.pgm", "map.yaml", "map.png", "trajectory.tum", "odometry.tum", "landmarks.ply"};
   if (!stack.update_records().empty() && stack.update_records()[0].has_ground_truth) files.push_back("groundtruth.tum");
