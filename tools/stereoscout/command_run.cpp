@@ -86,6 +86,7 @@ int run_run(int argc, char** argv) {
                       "writes the run directory (docs/deploy.md).");
   arguments.option("config", "FILE", "config file (the robot's devices are in section robot_pc)", default_config_path());
   arguments.option("max-time", "SEC", "stop after this much time (default: run.max_time_s)");
+  arguments.option("localization", "SOURCE", "pose source: rbpf or odometry (default: run.localization)");
   arguments.option("out", "DIR", "run directory (created)", "runs/robot");
   arguments.flag("no-log", "do not record the sensor log");
   if (!arguments.parse(argc, argv)) return arguments.exit_code();
