@@ -59,8 +59,8 @@ ExploreOutput Explorer::step(const ExploreInput& input) {
     return output;
   }
   if (input.grid_updated || rebuild_needed_) rebuild(input);
-  const bool exploring = state_ == ExploreState::look_around || state_ == ExploreState::choose_goal ||
-                         state_ == ExploreState::drive;
+  const bool exploring = (state_ == ExploreState::look_around && !return_after_look_) ||
+                         state_ == ExploreState::choose_goal || state_ == ExploreState::drive;
   if (exploring && input.time_s - start_time_s_ >= params_.explore.time_limit_s) {
     finish_exploring(input, FinishReason::time_limit);
   }
@@ -98,7 +98,7 @@ void Explorer::rebuild(const ExploreInput& input) {
 // worth going to (it may have been seen on the way)?
 void Explorer::check_plan(const ExploreInput& input) {
   if (state_ == ExploreState::drive &&
-      goal_value_.value(map_.grid(), goal_.cell.x(), goal_.cell.y()) <= params_.explore.min_goal_value) {
+      goal_value_.value(map_, goal_.cell.x(), goal_.cell.y()) <= params_.explore.min_goal_value) {
     ++counters_.goals_abandoned;
     plan_.clear();
     state_ = ExploreState::choose_goal;
@@ -107,7 +107,7 @@ void Explorer::check_plan(const ExploreInput& input) {
   for (std::size_t k = follower_.progress() + 1; k < plan_.cells.size(); ++k) {
     if (!map_.passable(plan_.cells[k].x(), plan_.cells[k].y())) {
       ++counters_.replans;
-      if (!replan(input)) goal_failed();
+      if (!replan(input)) goal_failed(input);
       return;
     }
   }
@@ -125,6 +125,13 @@ void Explorer::choose_goal(const ExploreInput& input) {
   for (int attempt = 0; attempt < kGoalAttemptsPerTick; ++attempt) {
     const Goal goal = goal_value_.select(map_, memory_);
     if (!goal.valid || goal.value <= params_.explore.min_goal_value) {
+      // Conclude only from a fresh look: a person who walked past may have left cells that box
+      // the robot in or hide the rest, and a look from here re-observes them.
+      if (params_.explore.pan_at_goal && !fresh_look_) {
+        ++counters_.looks_before_giving_up;
+        begin_look(input);
+        return;
+      }
       finish_exploring(input, FinishReason::explored);
       return;
     }
@@ -132,11 +139,12 @@ void Explorer::choose_goal(const ExploreInput& input) {
     goal_ = goal;
     if (replan(input)) {
       state_ = ExploreState::drive;
+      fresh_look_ = false;
       best_goal_distance_m_ = std::numeric_limits<double>::infinity();
       last_progress_time_s_ = input.time_s;
       return;
     }
-    goal_failed();
+    goal_failed(input);
   }
 }
 
@@ -156,12 +164,18 @@ void Explorer::finish_exploring(const ExploreInput& input, FinishReason reason) 
   goal_.cell = map_.grid().cell_of(goal_.position);
   best_goal_distance_m_ = std::numeric_limits<double>::infinity();
   last_progress_time_s_ = input.time_s;
-  if (!replan(input)) goal_failed();
+  if (!replan(input)) goal_failed(input);
 }
 
-void Explorer::goal_failed() {
+void Explorer::goal_failed(const ExploreInput& input) {
   plan_.clear();
   if (state_ == ExploreState::returning) {
+    if (params_.explore.pan_at_goal && !fresh_look_) {
+      ++counters_.looks_before_giving_up;  // the way back may be blocked by a passer-by's trace
+      begin_look(input);
+      return_after_look_ = true;
+      return;
+    }
     ++counters_.return_failures;
     state_ = ExploreState::finished;
     return;
@@ -185,7 +199,7 @@ void Explorer::look_step(const ExploreInput& input, ExploreOutput& output) {
     if (std::abs(core::wrap_angle(input.pan_rad - pan_target_rad_)) < kPanReached_rad) ++look_step_;
     if (look_step_ == kLookSteps) {
       pan_target_rad_ = 0.0;
-      state_ = ExploreState::choose_goal;
+      finish_look(input);
       return;
     }
     pan_target_rad_ = core::degrees_to_radians(kLookTargets_deg[look_step_]);
@@ -194,10 +208,24 @@ void Explorer::look_step(const ExploreInput& input, ExploreOutput& output) {
   look_turned_rad_ += core::wrap_angle(input.pose.theta - look_last_heading_);
   look_last_heading_ = input.pose.theta;
   if (look_turned_rad_ >= 2.0 * core::kPi) {
-    state_ = ExploreState::choose_goal;
+    finish_look(input);
     return;
   }
   output.drive.angular_rad_s = params_.max_turn_rate_rad_s;
+}
+
+void Explorer::finish_look(const ExploreInput& input) {
+  fresh_look_ = true;
+  if (!return_after_look_) {
+    state_ = ExploreState::choose_goal;
+    return;
+  }
+  return_after_look_ = false;
+  state_ = ExploreState::returning;
+  rebuild(input);
+  best_goal_distance_m_ = std::numeric_limits<double>::infinity();
+  last_progress_time_s_ = input.time_s;
+  if (!replan(input)) goal_failed(input);
 }
 
 void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
@@ -223,7 +251,7 @@ void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
     last_progress_time_s_ = input.time_s;
   } else if (input.time_s - last_progress_time_s_ > params_.explore.stuck_timeout_s) {
     ++counters_.stuck;
-    goal_failed();
+    goal_failed(input);
     return;
   }
   if (follow.command.linear_mps > 0.0 && !stretch_is_clear(input.grid, input.pose)) {

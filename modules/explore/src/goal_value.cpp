@@ -64,6 +64,11 @@ GoalValue::GoalValue(const ExploreParams& params)
 // Marches from the centre of s in steps of a quarter cell so that no cell the ray crosses
 // is skipped; |s' - s| is the distance between the two cell centres.
 double GoalValue::ray_value(const GridView& grid, int x, int y, std::size_t ray_index) const {
+  return ray_value(grid, nullptr, x, y, ray_index);
+}
+
+double GoalValue::ray_value(const GridView& grid, const NavigationMap* pockets, int x, int y,
+                            std::size_t ray_index) const {
   const Eigen::Vector2d& direction = directions_[ray_index];
   const double step_cells = 0.25;
   const double cap_cells = params_.ray_cap_m() / grid.resolution_m;
@@ -81,6 +86,7 @@ double GoalValue::ray_value(const GridView& grid, int x, int y, std::size_t ray_
     const CellState state = grid.at(cx, cy);
     if (state == CellState::free) continue;
     if (state == CellState::occupied) return 0.0;
+    if (pockets != nullptr && pockets->in_pocket(cx, cy)) return 0.0;  // nothing to see there
     const double dx = cx - x;
     const double dy = cy - y;
     const double distance_m = grid.resolution_m * std::sqrt(dx * dx + dy * dy);
@@ -93,7 +99,14 @@ double GoalValue::ray_value(const GridView& grid, int x, int y, std::size_t ray_
 double GoalValue::value(const GridView& grid, int x, int y) const {
   ++values_computed_;
   double sum = 0.0;
-  for (std::size_t k = 0; k < directions_.size(); ++k) sum += ray_value(grid, x, y, k);
+  for (std::size_t k = 0; k < directions_.size(); ++k) sum += ray_value(grid, nullptr, x, y, k);
+  return sum;
+}
+
+double GoalValue::value(const NavigationMap& map, int x, int y) const {
+  ++values_computed_;
+  double sum = 0.0;
+  for (std::size_t k = 0; k < directions_.size(); ++k) sum += ray_value(map.grid(), &map, x, y, k);
   return sum;
 }
 
@@ -111,7 +124,7 @@ Goal GoalValue::select(const NavigationMap& map, const GoalMemory& memory) const
   Goal best;
   auto consider = [&](int x, int y) {
     if (!is_candidate(map, memory, x, y)) return;
-    const double h = value(grid, x, y);
+    const double h = value(map, x, y);
     if (h > best.value) {
       best.valid = true;
       best.value = h;

@@ -25,7 +25,8 @@ NavigationMap::NavigationMap(const ExploreParams& params)
       traversability_(new std::uint8_t[capacity_]),
       penalty_(new float[capacity_]),
       reached_stamp_(new std::uint32_t[capacity_]()),
-      queue_(new std::int32_t[capacity_]) {}
+      queue_(new std::int32_t[capacity_]),
+      region_label_(new std::uint32_t[capacity_]()) {}
 
 bool NavigationMap::rebuild(const GridView& grid, const Eigen::Vector2d& robot, const Eigen::Vector2d& extra) {
   grid_ = grid;
@@ -38,10 +39,59 @@ bool NavigationMap::rebuild(const GridView& grid, const Eigen::Vector2d& robot, 
     return false;
   }
   find_window(robot, extra);
+  robot_ = robot;
   distance_transform(occupied_site_.get(), &is_occupied);
   distance_transform(unknown_site_.get(), &is_unknown);
   classify(robot, extra);
+  find_pockets();
   return true;
+}
+
+void NavigationMap::find_pockets() {
+  region_stamp_ += 2;
+  pocket_cells_ = 0;
+  for (int y = window_.y0; y < window_.y1; ++y) {
+    for (int x = window_.x0; x < window_.x1; ++x) {
+      const std::size_t i = index(x, y);
+      if (grid_.at(x, y) == CellState::unknown && region_label_[i] < region_stamp_) label_region(i);
+    }
+  }
+}
+
+bool NavigationMap::label_region(std::size_t seed) {
+  const double cell_area = grid_.resolution_m * grid_.resolution_m;
+  const auto max_cells = static_cast<std::size_t>(params_.explore.max_pocket_area_m2 / cell_area);
+  bool open = false;  // reaches the window's edge: part of the unexplored world outside
+  std::size_t head = 0;
+  std::size_t tail = 0;
+  region_label_[seed] = region_stamp_;
+  queue_[tail++] = static_cast<std::int32_t>(seed);
+  constexpr int kSteps[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+  while (head < tail) {
+    const std::int32_t cell = queue_[head++];
+    const int x = cell % grid_.width;
+    const int y = cell / grid_.width;
+    for (const auto& step : kSteps) {
+      const int nx = x + step[0];
+      const int ny = y + step[1];
+      if (!window_.contains(nx, ny)) {
+        open = true;
+        continue;
+      }
+      const std::size_t next = index(nx, ny);
+      if (grid_.at(nx, ny) != CellState::unknown || region_label_[next] >= region_stamp_) continue;
+      region_label_[next] = region_stamp_;
+      queue_[tail++] = static_cast<std::int32_t>(next);
+    }
+  }
+  if (open || tail > max_cells) return false;
+  for (std::size_t k = 0; k < tail; ++k) region_label_[static_cast<std::size_t>(queue_[k])] = region_stamp_ + 1;
+  pocket_cells_ += tail;
+  return true;
+}
+
+bool NavigationMap::in_pocket(int x, int y) const {
+  return window_.contains(x, y) && region_label_[index(x, y)] == region_stamp_ + 1;
 }
 
 // The bounding box of the known cells and of the places where unknown cells may be crossed,
@@ -111,7 +161,8 @@ void NavigationMap::distance_transform(std::int32_t* sites, bool (*is_site)(Cell
   };
   for (int y = window_.y0; y < window_.y1; ++y) {
     for (int x = window_.x0; x < window_.x1; ++x) {
-      sites[index(x, y)] = is_site(grid_.at(x, y)) ? static_cast<std::int32_t>(index(x, y)) : -1;
+      const bool site = is_site(grid_.at(x, y)) && !(is_site == &is_occupied && under_robot(x, y));
+      sites[index(x, y)] = site ? static_cast<std::int32_t>(index(x, y)) : -1;
     }
   }
   for (int y = window_.y0; y < window_.y1; ++y) {
@@ -147,7 +198,8 @@ void NavigationMap::classify(const Eigen::Vector2d& robot, const Eigen::Vector2d
       const Eigen::Vector2d centre = grid_.center(x, y);
       const bool unknown_allowed = (centre - robot).squaredNorm() <= travel2 || (centre - extra).squaredNorm() <= travel2;
       Traversability kind = Traversability::safe;
-      if (state == CellState::occupied || clearance < lethal || (state == CellState::unknown && !unknown_allowed)) {
+      if ((state == CellState::occupied && !under_robot(x, y)) || clearance < lethal ||
+          (state == CellState::unknown && !unknown_allowed)) {
         kind = Traversability::lethal;
       } else if (clearance < safe) {
         kind = Traversability::inflated;
@@ -158,6 +210,12 @@ void NavigationMap::classify(const Eigen::Vector2d& robot, const Eigen::Vector2d
       penalty_[i] = static_cast<float>(1.0 + params_.explore.obstacle_cost_weight * closeness + unknown_cost);
     }
   }
+}
+
+// The robot stands there, so nothing else can: an occupied cell under it is a trace of
+// something that has gone (a person who walked into it), not an obstacle to plan around.
+bool NavigationMap::under_robot(int x, int y) const {
+  return (grid_.center(x, y) - robot_).squaredNorm() < params_.robot_radius_m * params_.robot_radius_m;
 }
 
 double NavigationMap::occupied_distance_m(int x, int y) const { return site_distance_m(occupied_site_.get(), x, y); }

@@ -21,7 +21,8 @@ Simulator::Simulator(const World& world, const core::RobotConfig& robot, const c
       sim_(sim),
       seed_(seed),
       obstacles_(world, sim.floor_tolerance_m, robot.height_m),
-      odometry_queue_(static_cast<std::size_t>(sim.odometry_queue)) {
+      odometry_queue_(static_cast<std::size_t>(sim.odometry_queue)),
+      person_in_contact_(world.people.size(), 0) {
   teleport(world.start);
 }
 
@@ -43,13 +44,23 @@ void Simulator::command_pan(double pan_rad) {
   if (camera_.has_pan_unit && std::isfinite(pan_rad)) pan_target_rad_ = core::wrap_angle(pan_rad);
 }
 
-bool Simulator::collides(const Eigen::Vector2d& position) const {
-  if (obstacles_.disc_collides(position, robot_.radius_m)) return true;
+bool Simulator::collides(const Eigen::Vector2d& here, const Eigen::Vector2d& there) const {
+  if (obstacles_.disc_collides(there, robot_.radius_m)) return true;
   for (std::size_t i = 0; i < world_.people.size(); ++i) {
-    const Person& person = world_.people[i];
-    if ((world_.person_position(i, time_s()) - position).norm() < robot_.radius_m + person.radius) return true;
+    const Eigen::Vector2d person = world_.person_position(i, time_s());
+    const double next_distance = (person - there).norm();
+    if (next_distance < robot_.radius_m + world_.people[i].radius && next_distance < (person - here).norm()) return true;
   }
   return false;
+}
+
+void Simulator::count_person_contacts() {
+  for (std::size_t i = 0; i < world_.people.size(); ++i) {
+    const double distance = (world_.person_position(i, time_s()) - pose_.translation()).norm();
+    const bool overlapping = distance < robot_.radius_m + world_.people[i].radius;
+    if (overlapping && person_in_contact_[i] == 0) ++person_contacts_;
+    person_in_contact_[i] = overlapping ? 1 : 0;
+  }
 }
 
 void Simulator::integrate(double dt_s) {
@@ -57,20 +68,22 @@ void Simulator::integrate(double dt_s) {
   const double pan_error = core::wrap_angle(pan_target_rad_ - pan_rad_);
   const double pan_step = core::degrees_to_radians(camera_.pan_rate_deg_s) * dt_s;
   pan_rad_ = core::wrap_angle(pan_rad_ + std::clamp(pan_error, -pan_step, pan_step));
-  if (command_.linear_mps == 0.0 && command_.angular_rad_s == 0.0) return;
-  // Unicycle, midpoint heading (exact for straight lines and turns in place).
-  const double turn = command_.angular_rad_s * dt_s;
-  const double heading = pose_.theta + 0.5 * turn;
-  const double travel = command_.linear_mps * dt_s;
-  const core::Pose2 next{pose_.x + travel * std::cos(heading), pose_.y + travel * std::sin(heading),
-                         core::wrap_angle(pose_.theta + turn)};
-  if (collides(next.translation())) {
-    ++collisions_;
-    command_ = core::DriveCommand{};
-    return;
+  if (command_.linear_mps != 0.0 || command_.angular_rad_s != 0.0) {
+    // Unicycle, midpoint heading (exact for straight lines and turns in place).
+    const double turn = command_.angular_rad_s * dt_s;
+    const double heading = pose_.theta + 0.5 * turn;
+    const double travel = command_.linear_mps * dt_s;
+    const core::Pose2 next{pose_.x + travel * std::cos(heading), pose_.y + travel * std::sin(heading),
+                           core::wrap_angle(pose_.theta + turn)};
+    if (collides(pose_.translation(), next.translation())) {
+      ++collisions_;
+      command_ = core::DriveCommand{};
+    } else {
+      pose_ = next;
+      distance_m_ += std::abs(travel);
+    }
   }
-  pose_ = next;
-  distance_m_ += std::abs(travel);
+  count_person_contacts();
 }
 
 void Simulator::emit_odometry() {

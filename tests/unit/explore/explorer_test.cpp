@@ -176,6 +176,26 @@ TEST(Explorer, FinishesWhenNothingIsLeft) {
   EXPECT_EQ(explorer.counters().return_failures, 0U);
 }
 
+TEST(Explorer, FinishesByItselfWhenOnlyAnUnobservablePocketIsLeft) {
+  // A seen room with a box whose inside (and a two-cell gap of its side) was never seen.
+  TestGrid room(60, 60, CellState::free);
+  room.walls();
+  room.fill(20, 20, 30, 30, CellState::occupied);
+  room.fill(21, 21, 29, 29, CellState::unknown);
+  room.fill(20, 22, 21, 28, CellState::unknown);
+  ExploreParams params = no_look_params(60, 60);
+  Explorer explorer(params);
+  explorer.step(input_at(room.view(), 0.5, 2.5, 0.0, 0.0, true));
+  EXPECT_EQ(explorer.finish_reason(), FinishReason::explored);
+  EXPECT_EQ(explorer.state(), ExploreState::finished);
+  // Counting the pocket as a frontier, its gap is worth a trip and exploration goes on.
+  params.explore.max_pocket_area_m2 = 0.0;
+  Explorer counting_pockets(params);
+  counting_pockets.step(input_at(room.view(), 0.5, 2.5, 0.0, 0.0, true));
+  EXPECT_EQ(counting_pockets.finish_reason(), FinishReason::none);
+  EXPECT_EQ(counting_pockets.state(), ExploreState::drive);
+}
+
 TEST(Explorer, ReturnsToTheStartAfterTheTimeLimit) {
   Corridor scene;
   ExploreParams params = test_params(100, 60);

@@ -156,5 +156,53 @@ TEST(NavigationMap, InflatesObstaclesByTheRobotRadiusAndMargin) {
   EXPECT_FALSE(map.passable(25, 10));  // 1.5 m from the robot
 }
 
+// A walled room, all seen, with a 0.8 m box whose inside is unknown and whose ring has a
+// two-cell gap the camera never saw (unknown too), and a 3.2 x 3.2 m unknown block walled off.
+struct PocketScene {
+  TestGrid grid{80, 60, CellState::free};
+  PocketScene() {
+    grid.walls();
+    grid.fill(20, 20, 30, 30, CellState::occupied);
+    grid.fill(21, 21, 29, 29, CellState::unknown);
+    grid.fill(20, 24, 21, 26, CellState::unknown);  // the gap, facing west
+    grid.fill(44, 10, 78, 44, CellState::occupied);
+    grid.fill(45, 11, 77, 43, CellState::unknown);  // 10.2 m^2: larger than a pocket
+  }
+};
+
+TEST(NavigationMap, SmallEnclosedUnknownRegionsArePocketsOpenOrLargeOnesAreNot) {
+  PocketScene scene;
+  const ExploreParams params = test_params(80, 60);
+  NavigationMap map(params);
+  const Eigen::Vector2d robot(0.5, 2.5);
+  ASSERT_TRUE(map.rebuild(scene.grid.view(), robot, robot));
+  EXPECT_TRUE(map.in_pocket(25, 25));
+  EXPECT_TRUE(map.in_pocket(20, 24));  // the gap is part of it
+  EXPECT_FALSE(map.in_pocket(22, 40));  // free
+  EXPECT_FALSE(map.in_pocket(60, 30));  // too large
+  EXPECT_EQ(map.pocket_cells(), 64U + 2U);
+  // A grid whose unknown reaches the window's edge: the world outside, never a pocket.
+  TestGrid open_room(80, 60, CellState::unknown);
+  open_room.fill(10, 10, 20, 20, CellState::free);
+  open_room.set(12, 12, CellState::unknown);
+  ASSERT_TRUE(map.rebuild(open_room.view(), robot, robot));
+  EXPECT_TRUE(map.in_pocket(12, 12));  // one unseen cell inside seen floor
+  EXPECT_FALSE(map.in_pocket(40, 40));
+  EXPECT_EQ(map.pocket_cells(), 1U);
+}
+
+TEST(GoalValue, RaysIntoAPocketAreWorthNothing) {
+  PocketScene scene;
+  const ExploreParams params = test_params(80, 60);
+  NavigationMap map(params);
+  const Eigen::Vector2d robot(0.5, 2.5);
+  ASSERT_TRUE(map.rebuild(scene.grid.view(), robot, robot));
+  const GoalValue goal_value(params);
+  // 1.9 m west of the gap, nothing else unknown within the ray cap: the plain H sees the
+  // gap near r*; the map's H does not.
+  EXPECT_GT(goal_value.value(scene.grid.view(), 1, 25), 0.5);
+  EXPECT_DOUBLE_EQ(goal_value.value(map, 1, 25), 0.0);
+}
+
 }  // namespace
 }  // namespace stereoscout::explore

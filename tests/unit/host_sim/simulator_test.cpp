@@ -193,6 +193,33 @@ TEST(Simulator, DriveIntoAWallIsStoppedAndCounted) {
   EXPECT_EQ(simulator.collision_count(), 2U);
 }
 
+TEST(Simulator, APersonWalkingIntoTheRobotIsTheirCollisionNotOurs) {
+  // A person walks to and fro along y = 10 through the robot standing at (10, 10), 0.5 m/s.
+  const World world =
+      load_or_fail(hall_yaml(false) + "people:\n  - {waypoints: [[5, 10], [15, 10]], speed: 0.5}\n");
+  Simulator simulator(world, core::RobotConfig{}, core::CameraConfig{}, noiseless(), 1);
+  simulator.step(20.0);  // stopped: the person passes through once
+  EXPECT_EQ(simulator.collision_count(), 0U);
+  EXPECT_EQ(simulator.person_contact_count(), 1U);
+  simulator.command({0.0, 0.1});  // turning in place as the person comes back: still theirs
+  simulator.step(15.0);
+  EXPECT_EQ(simulator.collision_count(), 0U);
+  EXPECT_EQ(simulator.person_contact_count(), 2U);
+  EXPECT_GT(simulator.true_pose().theta, 1.0);  // the turn was not blocked
+}
+
+TEST(Simulator, DrivingIntoAPersonIsOurCollision) {
+  // A person stands at (12, 10); the robot drives at them from (10, 10).
+  const World world =
+      load_or_fail(hall_yaml(false) + "people:\n  - {waypoints: [[12, 10], [12, 10]], speed: 0.5}\n");
+  Simulator simulator(world, core::RobotConfig{}, core::CameraConfig{}, noiseless(), 1);
+  simulator.command({0.12, 0.0});
+  simulator.step(30.0);
+  EXPECT_EQ(simulator.collision_count(), 1U);
+  EXPECT_EQ(simulator.person_contact_count(), 0U);
+  EXPECT_NEAR(simulator.true_pose().x, 12.0 - 0.25 - 0.35, 0.002);
+}
+
 TEST(Simulator, LowAndHighObstaclesFollowTheHeightBand) {
   // A 1 cm cable protector is driven over; a shelf at 1.5 m is passed under (robot 1.2 m);
   // a 10 cm box blocks.

@@ -5,7 +5,9 @@
 // navigation map, check the rest of the plan and replan when it is blocked; no safe plan ->
 // another goal; a goal that keeps failing is blacklisted. Exploration ends when no goal is
 // worth more than min_goal_value or at time_limit_s, then the robot returns to the start if
-// configured.
+// configured. With pan_at_goal, neither "no goal" nor "no way back" is concluded before a
+// fresh look from where the robot stands (people walking past leave traces that a look
+// clears; see the occupancy grid).
 //
 // Safety, every tick: the emergency stop commands zero velocity in the same call; before any
 // forward motion the next stretch of the plan (and the point just ahead of the robot) is
@@ -60,6 +62,7 @@ struct ExploreCounters {
   std::uint64_t emergency_stop_ticks = 0;
   std::uint64_t looks = 0;
   std::uint64_t return_failures = 0;
+  std::uint64_t looks_before_giving_up = 0;  // no goal, or no way back: one more look first
 };
 
 class Explorer {
@@ -83,8 +86,9 @@ class Explorer {
   bool replan(const ExploreInput& input);
   void choose_goal(const ExploreInput& input);
   void finish_exploring(const ExploreInput& input, FinishReason reason);
-  void goal_failed();
+  void goal_failed(const ExploreInput& input);
   void begin_look(const ExploreInput& input);
+  void finish_look(const ExploreInput& input);
   void look_step(const ExploreInput& input, ExploreOutput& output);
   void drive_step(const ExploreInput& input, ExploreOutput& output);
   bool stretch_is_clear(const GridView& grid, const core::Pose2& pose) const;
@@ -111,6 +115,8 @@ class Explorer {
   double look_turned_rad_ = 0.0;
   double look_last_heading_ = 0.0;
   double pan_target_rad_ = 0.0;
+  bool fresh_look_ = false;         // a look ended and no goal has been driven to since
+  bool return_after_look_ = false;  // the look was for a blocked way back to the start
   // Progress towards the goal.
   double best_goal_distance_m_ = 0.0;
   double last_progress_time_s_ = 0.0;

@@ -61,6 +61,9 @@ class GoalValue {
   double ray_value(const GridView& grid, int x, int y, std::size_t ray_index) const;
   // H(s).
   double value(const GridView& grid, int x, int y) const;
+  // H(s) on the map's grid, an unknown cell of an unobservable pocket counting as occupied
+  // (NavigationMap::in_pocket). What select() and the explorer use.
+  double value(const NavigationMap& map, int x, int y) const;
   std::size_t ray_count() const { return directions_.size(); }
 
   // argmax H over the candidates (see above); `map` must have compute_reachable() done.
@@ -70,6 +73,9 @@ class GoalValue {
   std::uint64_t values_computed() const { return values_computed_; }
 
  private:
+  // pockets: null to treat every unknown cell as a frontier.
+  double ray_value(const GridView& grid, const NavigationMap* pockets, int x, int y, std::size_t ray_index) const;
+
   ExploreParams params_;
   core::FixedVector<Eigen::Vector2d> directions_;
   mutable std::uint64_t values_computed_ = 0;

@@ -4,6 +4,16 @@
 // propagating the nearest site), the traversability class of each cell for the robot's
 // footprint, step costs for A*, and the set of cells reachable from the robot (flood fill).
 //
+// Occupied cells under the robot's disc where it stands are ignored (nothing else can be
+// there; they are traces of a person who walked into the robot).
+//
+// Unobservable pockets: an unknown region (4-connected, so that a diagonal wall line closes
+// it) that does not reach the window's edge and covers at most explore.max_pocket_area_m2 is
+// enclosed by what the robot has seen: the inside of a low box or a cupboard, the floor under
+// a table behind its edge, single cells along a wall. No view from the free space will make
+// it known, so it is not a frontier (GoalValue treats it like an occupied cell); otherwise
+// such pockets keep goals above min_goal_value and exploration never ends by itself.
+//
 // Speed: all work is confined to a window, the bounding box of the known cells grown by the
 // ray cap (cells farther out are unknown and worth nothing), so early in a run only a small
 // part of the 700 x 700 grid is touched. Buffers are sized at start-up for the full grid;
@@ -54,6 +64,10 @@ class NavigationMap {
   // of the cell entered); requires passable(to).
   double step_cost(int from_x, int from_y, int to_x, int to_y) const;
 
+  // An unknown cell of an unobservable pocket (see above).
+  bool in_pocket(int x, int y) const;
+  std::uint64_t pocket_cells() const { return pocket_cells_; }  // in the last rebuild
+
   // Flood fill (8-connected, over passable cells) from `start`; the start cell counts even if
   // it is not passable (the robot stands there).
   void compute_reachable(const Eigen::Vector2i& start);
@@ -64,11 +78,16 @@ class NavigationMap {
   void distance_transform(std::int32_t* sites, bool (*is_site)(CellState));
   void classify(const Eigen::Vector2d& robot, const Eigen::Vector2d& extra);
   double site_distance_m(const std::int32_t* sites, int x, int y) const;
+  bool under_robot(int x, int y) const;
+  void find_pockets();
+  // Labels the unknown region of `seed` (4-connected) as visited; true when it is a pocket.
+  bool label_region(std::size_t seed);
 
   ExploreParams params_;
   std::size_t capacity_ = 0;
   GridView grid_;
   CellBox window_;
+  Eigen::Vector2d robot_ = Eigen::Vector2d::Zero();
   std::unique_ptr<std::int32_t[]> occupied_site_;
   std::unique_ptr<std::int32_t[]> unknown_site_;
   std::unique_ptr<std::uint8_t[]> traversability_;
@@ -76,6 +95,10 @@ class NavigationMap {
   std::unique_ptr<std::uint32_t[]> reached_stamp_;
   std::unique_ptr<std::int32_t[]> queue_;
   std::uint32_t reach_stamp_ = 0;
+  // region_stamp_ of a cell: == region_stamp_ visited, == region_stamp_ + 1 in a pocket.
+  std::unique_ptr<std::uint32_t[]> region_label_;
+  std::uint32_t region_stamp_ = 0;
+  std::uint64_t pocket_cells_ = 0;
 };
 
 }  // namespace stereoscout::explore

@@ -7,15 +7,20 @@
 //
 // Kinematics: differential drive (unicycle) at the commanded velocities, clamped to the
 // robot's limits (paper: 0.12 m/s, 8 deg/s), no acceleration limits. Collision: if the next
-// integration step would bring the robot's disc into an obstacle of its height band (or a
-// person), the robot stays, its command is zeroed and collision_count() goes up by one; a
-// new command lets it move again.
+// integration step would bring the robot's disc into an obstacle of its height band, or
+// closer to a person whose disc it would overlap, the robot stays, its command is zeroed and
+// collision_count() goes up by one; a new command lets it move again. People walk their
+// loops regardless of the robot: a person who walks into a robot that is stopped, turning in
+// place or moving away is the person's collision, not the robot's; each such contact (start
+// of an overlap) is counted in person_contact_count(), and the robot may still turn or back
+// away.
 //
 // Odometry: at robot.odometry_rate_hz the true motion since the last reading is corrupted by
 // the noise model of the floor under the robot (config sim.tile / sim.carpet) and integrated
 // into the odometry pose.
 
 #include <cstdint>
+#include <vector>
 
 #include "stereoscout/core/config/camera.hpp"
 #include "stereoscout/core/config/robot.hpp"
@@ -64,6 +69,7 @@ class Simulator {
   const core::Pose2& odometry_pose() const { return odometry_pose_; }
   double pan_rad() const { return pan_rad_; }
   std::uint64_t collision_count() const { return collisions_; }
+  std::uint64_t person_contact_count() const { return person_contacts_; }
   std::uint64_t odometry_dropped() const { return odometry_queue_.overwritten(); }
   double distance_travelled_m() const { return distance_m_; }
   const World& world() const { return world_; }
@@ -74,7 +80,10 @@ class Simulator {
 
  private:
   void integrate(double dt_s);
-  bool collides(const Eigen::Vector2d& position) const;
+  // The step from `here` to `there` brings the disc into an obstacle or towards a person it
+  // would overlap.
+  bool collides(const Eigen::Vector2d& here, const Eigen::Vector2d& there) const;
+  void count_person_contacts();
   void emit_odometry();
 
   const World& world_;
@@ -94,6 +103,8 @@ class Simulator {
   double pan_rad_ = 0.0;
   double pan_target_rad_ = 0.0;
   std::uint64_t collisions_ = 0;
+  std::uint64_t person_contacts_ = 0;
+  std::vector<std::uint8_t> person_in_contact_;  // one per person, sized at construction
   double distance_m_ = 0.0;
 };
 

@@ -12,6 +12,7 @@ struct ExploreConfig {
   int candidate_stride_cells = 3;
   double safety_margin_m = 0.10;
   double min_goal_value = 3.0;
+  double max_pocket_area_m2 = 3.0;
   double goal_tolerance_m = 0.25;
   int goal_failures_before_blacklist = 3;
   double visited_goal_radius_m = 0.5;
@@ -39,6 +40,7 @@ inline void describe(ConfigVisitor& v, ExploreConfig& c) {
   v.integer_field("candidate_stride_cells", c.candidate_stride_cells, {1, 20, "cells", "H is evaluated on a lattice of this spacing, then at full resolution around the best lattice cell."});
   v.number("safety_margin_m", c.safety_margin_m, {0.0, 2.0, "m", "Added to the robot radius when inflating obstacles; goals keep this clearance, paths pay a high cost inside it."});
   v.number("min_goal_value", c.min_goal_value, {0.0, 1000.0, "", "Exploration ends when no goal is worth more than this (about three rays seeing unknown space at r*; small unknown pockets, such as the floor under a table, are not worth a trip)."});
+  v.number("max_pocket_area_m2", c.max_pocket_area_m2, {0.0, 1000.0, "m^2", "An unknown region enclosed by known cells and no larger than this (inside a low box or cupboard, under a table, along a wall) cannot be seen from the free space and is not a frontier; 0 treats every unknown region as a frontier."});
   v.number("goal_tolerance_m", c.goal_tolerance_m, {0.01, 5.0, "m", "A goal is reached within this distance."});
   v.integer_field("goal_failures_before_blacklist", c.goal_failures_before_blacklist, {1, 100, "", "A goal that failed this many times is never chosen again."});
   v.number("visited_goal_radius_m", c.visited_goal_radius_m, {0.0, 10.0, "m", "Candidates this close to a blacklisted or already visited goal are skipped."});
