@@ -201,6 +201,7 @@ ExploreGtResult run_explore_gt(const core::SystemConfig& config, const host_sim:
                                                      static_cast<double>(truth.reachable_cells);
   result.coverage_curve.push_back({simulator.time_s(), result.coverage});
   result.collisions = simulator.collision_count();
+  result.person_contacts = simulator.person_contact_count();
   result.distance_m = simulator.distance_travelled_m();
   result.distance_from_start_m = (simulator.true_pose().translation() - world.start.translation()).norm();
   result.counters = explorer.counters();
@@ -229,20 +230,22 @@ std::string explore_gt_json(const std::string& world_name, const ExploreGtResult
   char buffer[2048];
   std::snprintf(buffer, sizeof(buffer),
                 "{\"world\": \"%s\", \"coverage\": %.4f, \"time_to_90_s\": %.0f, \"time_to_95_s\": %.0f, \"reachable_cells\": %zu, \"covered_cells\": %zu, "
-                "\"collisions\": %llu, \"exploration_time_s\": %.1f, \"total_time_s\": %.1f, \"distance_m\": %.2f, "
+                "\"collisions\": %llu, \"person_contacts\": %llu, \"exploration_time_s\": %.1f, \"total_time_s\": %.1f, \"distance_m\": %.2f, "
                 "\"distance_from_start_m\": %.2f, \"finish\": \"%s\", \"final_state\": \"%s\", \"updates\": %llu, "
                 "\"goals_chosen\": %llu, \"goals_reached\": %llu, \"goals_abandoned\": %llu, \"goal_failures\": %llu, "
                 "\"goals_blacklisted\": %llu, \"plan_failures\": %llu, \"replans\": %llu, \"stuck\": %llu, "
-                "\"safety_stops\": %llu, \"looks\": %llu, \"return_failures\": %llu}",
+                "\"safety_stops\": %llu, \"looks\": %llu, \"looks_before_giving_up\": %llu, \"return_failures\": %llu}",
                 world_name.c_str(), result.coverage, time_to[0], time_to[1], result.reachable_cells, result.covered_cells,
-                static_cast<unsigned long long>(result.collisions), result.exploration_time_s, result.total_time_s,
+                static_cast<unsigned long long>(result.collisions),
+                static_cast<unsigned long long>(result.person_contacts), result.exploration_time_s, result.total_time_s,
                 result.distance_m, result.distance_from_start_m, reason, explore::to_string(result.final_state),
                 static_cast<unsigned long long>(result.updates), static_cast<unsigned long long>(c.goals_chosen),
                 static_cast<unsigned long long>(c.goals_reached), static_cast<unsigned long long>(c.goals_abandoned),
                 static_cast<unsigned long long>(c.goal_failures), static_cast<unsigned long long>(c.goals_blacklisted),
                 static_cast<unsigned long long>(c.plan_failures), static_cast<unsigned long long>(c.replans),
                 static_cast<unsigned long long>(c.stuck), static_cast<unsigned long long>(c.safety_stops),
-                static_cast<unsigned long long>(c.looks), static_cast<unsigned long long>(c.return_failures));
+                static_cast<unsigned long long>(c.looks), static_cast<unsigned long long>(c.looks_before_giving_up),
+                static_cast<unsigned long long>(c.return_failures));
   return buffer;
 }
 

@@ -39,7 +39,8 @@ struct ExploreGtResult {
   double coverage = 0.0;  // fraction of the reachable free space the grid holds as free
   std::size_t reachable_cells = 0;
   std::size_t covered_cells = 0;
-  std::uint64_t collisions = 0;
+  std::uint64_t collisions = 0;       // the robot drove into an obstacle or a person
+  std::uint64_t person_contacts = 0;  // a person walked into the stopped (or turning) robot
   double exploration_time_s = 0.0;  // until exploration ended (before the return)
   double total_time_s = 0.0;
   double distance_m = 0.0;

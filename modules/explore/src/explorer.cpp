@@ -150,6 +150,7 @@ void Explorer::choose_goal(const ExploreInput& input) {
 
 void Explorer::finish_exploring(const ExploreInput& input, FinishReason reason) {
   finish_reason_ = reason;
+  resume_after_look_ = false;
   plan_.clear();
   pan_target_rad_ = 0.0;
   if (!params_.explore.return_to_start) {
@@ -172,8 +173,9 @@ void Explorer::goal_failed(const ExploreInput& input) {
   if (state_ == ExploreState::returning) {
     if (params_.explore.pan_at_goal && !fresh_look_) {
       ++counters_.looks_before_giving_up;  // the way back may be blocked by a passer-by's trace
-      begin_look(input);
       return_after_look_ = true;
+      keep_progress_after_look_ = false;
+      begin_look(input);
       return;
     }
     ++counters_.return_failures;
@@ -216,15 +218,20 @@ void Explorer::look_step(const ExploreInput& input, ExploreOutput& output) {
 
 void Explorer::finish_look(const ExploreInput& input) {
   fresh_look_ = true;
-  if (!return_after_look_) {
+  if (!return_after_look_ && !resume_after_look_) {
     state_ = ExploreState::choose_goal;
     return;
   }
+  // Back to the goal (or the start) of before the look, on a plan made from the new views.
+  state_ = return_after_look_ ? ExploreState::returning : ExploreState::drive;
   return_after_look_ = false;
-  state_ = ExploreState::returning;
+  resume_after_look_ = false;
   rebuild(input);
-  best_goal_distance_m_ = std::numeric_limits<double>::infinity();
-  last_progress_time_s_ = input.time_s;
+  if (!keep_progress_after_look_) {
+    best_goal_distance_m_ = std::numeric_limits<double>::infinity();
+    last_progress_time_s_ = input.time_s;
+  }
+  keep_progress_after_look_ = false;
   if (!replan(input)) goal_failed(input);
 }
 
@@ -255,10 +262,23 @@ void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
     return;
   }
   if (follow.command.linear_mps > 0.0 && !stretch_is_clear(input.grid, input.pose)) {
-    // No translation; turning in place moves the disc into no new cell, and lets the robot
-    // face a replanned path (or a cleared view) instead of standing still for ever.
     ++counters_.safety_stops;
     rebuild_needed_ = true;  // the next tick rebuilds the map from this grid and replans
+    if (params_.explore.pan_at_goal) {
+      // A robot standing still makes no observation update (they follow motion), so what
+      // blocks it would never be looked at again: look around, then carry on (a person who
+      // has walked on is cleared by the look's views).
+      if (state_ == ExploreState::returning) {
+        return_after_look_ = true;
+      } else {
+        resume_after_look_ = true;
+      }
+      keep_progress_after_look_ = true;  // a goal blocked for stuck_timeout_s still fails
+      begin_look(input);
+      return;
+    }
+    // No translation; turning in place moves the disc into no new cell, and lets the robot
+    // face a replanned path (or a cleared view) instead of standing still for ever.
     output.drive.angular_rad_s = follow.command.angular_rad_s;
     return;
   }

@@ -90,6 +90,38 @@ TEST(Explorer, StopsBeforeAnOccupiedCellAheadEvenBeforeTheMapIsRebuilt) {
   for (const Eigen::Vector2i& cell : explorer.plan().cells) EXPECT_NE(cell, Eigen::Vector2i(19, 30));
 }
 
+// Steps through a look with the pan unit reaching each target at once.
+void complete_look(Explorer& explorer, const GridView& grid, double time_s) {
+  for (const double pan_deg : {0.0, 90.0, 180.0, -90.0, 0.0}) {
+    ExploreInput input = input_at(grid, 1.5, 3.0, 0.0, time_s, false);
+    input.pan_rad = pan_deg * M_PI / 180.0;
+    explorer.step(input);
+  }
+}
+
+TEST(Explorer, ASafetyStopLooksAroundThenResumesTheSameGoal) {
+  Corridor scene;
+  ExploreParams params = test_params(100, 60);
+  params.explore.return_to_start = false;
+  Explorer explorer(params);
+  complete_look(explorer, scene.grid.view(), 0.0);
+  ASSERT_EQ(explorer.state(), ExploreState::drive);
+  const Goal goal = explorer.goal();
+  // Something appears 0.4 m ahead on the plan (a person stepping in): stop and look, since a
+  // standing robot makes no observation update.
+  scene.grid.set(19, 30, CellState::occupied);
+  const ExploreOutput stopped = explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.1, false));
+  EXPECT_EQ(stopped.drive.linear_mps, 0.0);
+  EXPECT_EQ(stopped.state, ExploreState::look_around);
+  EXPECT_EQ(explorer.counters().safety_stops, 1U);
+  EXPECT_EQ(explorer.counters().looks, 2U);
+  complete_look(explorer, scene.grid.view(), 0.2);
+  EXPECT_EQ(explorer.state(), ExploreState::drive);
+  EXPECT_EQ(explorer.goal().cell, goal.cell);
+  EXPECT_EQ(explorer.counters().goals_chosen, 1U);
+  for (const Eigen::Vector2i& cell : explorer.plan().cells) EXPECT_NE(cell, Eigen::Vector2i(19, 30));
+}
+
 TEST(Explorer, EmergencyStopHaltsInTheSameTickAndResumes) {
   Corridor scene;
   Explorer explorer(no_look_params(100, 60));

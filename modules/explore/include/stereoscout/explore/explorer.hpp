@@ -12,7 +12,9 @@
 // Safety, every tick: the emergency stop commands zero velocity in the same call; before any
 // forward motion the next stretch of the plan (and the point just ahead of the robot) is
 // checked against the cells the current grid holds as occupied, and the robot stops if the
-// disc would touch one it does not already touch.
+// disc would touch one it does not already touch. With pan_at_goal it then looks around
+// (a standing robot makes no observation update, so nothing would clear a person's trace)
+// and carries on to the same goal on a new plan.
 //
 // All buffers are allocated by the constructor; step() allocates nothing.
 
@@ -116,7 +118,9 @@ class Explorer {
   double look_last_heading_ = 0.0;
   double pan_target_rad_ = 0.0;
   bool fresh_look_ = false;         // a look ended and no goal has been driven to since
-  bool return_after_look_ = false;  // the look was for a blocked way back to the start
+  bool return_after_look_ = false;  // after the look: back on the way to the start
+  bool resume_after_look_ = false;  // after the look: back on the way to the same goal
+  bool keep_progress_after_look_ = false;  // the look was a safety stop's: keep the stuck timer
   // Progress towards the goal.
   double best_goal_distance_m_ = 0.0;
   double last_progress_time_s_ = 0.0;
