@@ -3,6 +3,7 @@
 // truth, the density and the time.
 #include <chrono>
 #include <cstdio>
+#include <string>
 
 #include <opencv2/imgcodecs.hpp>
 
@@ -37,6 +38,14 @@ int run_eval_disparity(int argc, char** argv) {
   arguments.option("scale", "S", "ground-truth value per pixel of disparity", "1");
   arguments.option("window", "PX", "aggregation window (odd)", "7");
   arguments.option("repeat", "N", "runs to time (the fastest is reported)", "3");
+  // The other checks default to the config defaults (vision.dense_*), overridable to compare.
+  const core::VisionConfig defaults{};
+  arguments.option("uniqueness", "R", "uniqueness ratio", std::to_string(defaults.dense_uniqueness_ratio));
+  arguments.option("texture", "G", "minimum texture, grey levels", std::to_string(defaults.dense_min_texture));
+  arguments.option("speckle-region", "PX", "largest speckle region removed (0: off)",
+                   std::to_string(defaults.dense_speckle_max_region_px));
+  arguments.option("speckle-step", "PX", "disparity step inside one speckle region",
+                   std::to_string(defaults.dense_speckle_max_step_px));
   if (!arguments.parse(argc, argv)) {
     return arguments.exit_code();
   }
@@ -44,13 +53,20 @@ int run_eval_disparity(int argc, char** argv) {
   long long window = 0;
   long long repeat = 0;
   double scale = 1.0;
+  long long speckle_region = 0;
+  vision::DenseDisparityParams params = vision::dense_params_from_config(defaults);
   if (!arguments.get_int("ndisp", disparities) || !arguments.get_int("window", window) ||
-      !arguments.get_int("repeat", repeat) || !arguments.get_double("scale", scale)) {
+      !arguments.get_int("repeat", repeat) || !arguments.get_double("scale", scale) ||
+      !arguments.get_double("uniqueness", params.uniqueness_ratio) ||
+      !arguments.get_double("texture", params.min_texture) || !arguments.get_int("speckle-region", speckle_region) ||
+      !arguments.get_double("speckle-step", params.speckle_max_step_px)) {
     return 2;
   }
   if (!arguments.has("left") || !arguments.has("right") || disparities < 2 || window < 1 || window % 2 == 0 ||
-      repeat < 1 || scale <= 0.0) {
-    std::fprintf(stderr, "stereoscout eval-disparity: need --left and --right, --ndisp >= 2, odd --window, --scale > 0\n");
+      repeat < 1 || scale <= 0.0 || speckle_region < 0 || params.speckle_max_step_px < 0.0) {
+    std::fprintf(stderr,
+                 "stereoscout eval-disparity: need --left and --right, --ndisp >= 2, odd --window, --scale > 0,\n"
+                 "--speckle-region >= 0, --speckle-step >= 0\n");
     return 2;
   }
   cv::Mat left;
@@ -62,7 +78,7 @@ int run_eval_disparity(int argc, char** argv) {
     std::fprintf(stderr, "stereoscout eval-disparity: left and right images differ in size\n");
     return 1;
   }
-  vision::DenseDisparityParams params = vision::dense_params_from_config(core::VisionConfig{});
+  params.speckle_max_region_px = static_cast<int>(speckle_region);
   params.num_disparities = static_cast<int>(disparities);
   params.window_px = static_cast<int>(window);
   vision::DenseDisparityMatcher matcher(params, left.cols, left.rows);
@@ -80,8 +96,9 @@ int run_eval_disparity(int argc, char** argv) {
               disparities, window);
   std::printf("  \"density_all_pixels\": %.4f, \"time_ms\": %.2f,\n",
               static_cast<double>(stats.valid) / static_cast<double>(stats.pixels), best_ms);
-  std::printf("  \"rejected\": {\"texture\": %zu, \"uniqueness\": %zu, \"left_right\": %zu, \"border\": %zu}",
-              stats.rejected_texture, stats.rejected_uniqueness, stats.rejected_left_right, stats.border);
+  std::printf("  \"rejected\": {\"texture\": %zu, \"uniqueness\": %zu, \"left_right\": %zu, \"speckle\": %zu, \"border\": %zu}",
+              stats.rejected_texture, stats.rejected_uniqueness, stats.rejected_left_right, stats.rejected_speckle,
+              stats.border);
   if (arguments.has("gt")) {
     const cv::Mat truth = cv::imread(arguments.get("gt"), cv::IMREAD_UNCHANGED);
     if (truth.empty() || truth.size() != left.size() || (truth.type() != CV_8UC1 && truth.type() != CV_16UC1)) {

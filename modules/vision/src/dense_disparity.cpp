@@ -52,6 +52,8 @@ DenseDisparityParams dense_params_from_config(const core::VisionConfig& vision) 
   params.uniqueness_ratio = vision.dense_uniqueness_ratio;
   params.min_texture = vision.dense_min_texture;
   params.lr_tolerance_px = vision.dense_lr_tolerance_px;
+  params.speckle_max_region_px = vision.dense_speckle_max_region_px;
+  params.speckle_max_step_px = vision.dense_speckle_max_step_px;
   return params;
 }
 
@@ -60,7 +62,8 @@ DenseDisparityMatcher::DenseDisparityMatcher(const DenseDisparityParams& params,
       width_(width_px),
       height_(height_px),
       disparities_(params.num_disparities),
-      radius_(params.window_px / 2) {
+      radius_(params.window_px / 2),
+      speckle_filter_({params.speckle_max_region_px, params.speckle_max_step_px}, width_px, height_px) {
   STEREOSCOUT_CHECK(width_px > 0 && height_px > 0 && disparities_ >= 2, "DenseDisparityMatcher: bad size");
   const auto pixels = static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_);
   const auto row_costs = static_cast<std::size_t>(disparities_) * static_cast<std::size_t>(width_);
@@ -308,8 +311,10 @@ void DenseDisparityMatcher::compute(const cv::Mat& left, const cv::Mat& right, c
     aggregate_row();
     select_row(y, disparity.ptr<float>(y));
   }
+  stats_.rejected_speckle = speckle_filter_.apply(disparity, kInvalidDisparity);
+  stats_.valid -= stats_.rejected_speckle;
   stats_.border = stats_.pixels - stats_.valid - stats_.rejected_texture - stats_.rejected_uniqueness -
-                  stats_.rejected_left_right;
+                  stats_.rejected_left_right - stats_.rejected_speckle;
 }
 
 DisparityScore score_disparity(const cv::Mat& disparity, const cv::Mat& ground_truth, double scale) {

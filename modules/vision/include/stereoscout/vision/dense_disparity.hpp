@@ -6,10 +6,13 @@
 // between the two cameras), summed over a square window. Winner-take-all over disparities
 // 0 .. N-1, refined to subpixel by a parabola through the three costs around the minimum.
 // A pixel is marked invalid (never guessed) when
-//   - its window has too little texture (mean absolute horizontal gradient),
+//   - its window has too little texture (mean absolute horizontal gradient; the default
+//     threshold lies above what the camera's own noise gives on a blank surface),
 //   - the best cost is not unique (a non-adjacent disparity costs nearly as little),
-//   - the left-right check fails (the right image's own winner disagrees), or
-//   - the window or the search range leaves the image.
+//   - the left-right check fails (the right image's own winner disagrees),
+//   - the window or the search range leaves the image, or
+//   - it lies in a small island of similar disparities (SpeckleFilter): scattered wrong
+//     winners on weak texture, which would otherwise become phantom obstacles in the scan.
 // The output is referenced to the LEFT image (the usual convention of stereo benchmarks):
 // left pixel (x, y) with disparity d matches right pixel (x - d, y). All buffers are sized at
 // construction; compute() does not allocate.
@@ -20,6 +23,7 @@
 #include <opencv2/core/mat.hpp>
 
 #include "stereoscout/core/config/vision.hpp"
+#include "stereoscout/vision/speckle_filter.hpp"
 
 namespace stereoscout::vision {
 
@@ -28,9 +32,11 @@ inline constexpr float kInvalidDisparity = -1.0F;
 struct DenseDisparityParams {
   int num_disparities = 64;
   int window_px = 7;
-  double uniqueness_ratio = 0.05;
-  double min_texture = 1.0;
+  double uniqueness_ratio = 0.1;
+  double min_texture = 2.5;
   int lr_tolerance_px = 1;
+  int speckle_max_region_px = 100;  // 0: no speckle filter
+  double speckle_max_step_px = 1.0;
 };
 
 DenseDisparityParams dense_params_from_config(const core::VisionConfig& vision);
@@ -41,6 +47,7 @@ struct DenseDisparityStats {
   std::size_t rejected_texture = 0;
   std::size_t rejected_uniqueness = 0;
   std::size_t rejected_left_right = 0;
+  std::size_t rejected_speckle = 0;
   std::size_t border = 0;
 };
 
@@ -84,6 +91,7 @@ class DenseDisparityMatcher {
   std::vector<std::int16_t> right_best_disparity_;
   void (*census_cost_kernel_)(const std::uint64_t*, const std::uint64_t*, std::uint8_t*, int, int, int) = nullptr;
   std::vector<std::int32_t> gradient_integral_;  // (width + 1) x (height + 1)
+  SpeckleFilter speckle_filter_;
   DenseDisparityStats stats_;
 };
 

@@ -32,9 +32,11 @@ struct VisionConfig {
   // Dense disparity block matcher.
   int dense_num_disparities = 64;
   int dense_window_px = 7;
-  double dense_uniqueness_ratio = 0.05;
-  double dense_min_texture = 1.0;
+  double dense_uniqueness_ratio = 0.1;
+  double dense_min_texture = 2.5;
   int dense_lr_tolerance_px = 1;
+  int dense_speckle_max_region_px = 100;
+  double dense_speckle_max_step_px = 1.0;
   int scan_min_obstacle_pixels = 4;
 };
 
@@ -64,8 +66,10 @@ inline void describe(ConfigVisitor& v, VisionConfig& c) {
   v.integer_field("dense_num_disparities", c.dense_num_disparities, {2, 512, "px", "Disparities searched by the dense block matcher (0 .. N-1)."});
   v.integer_field("dense_window_px", c.dense_window_px, {1, 31, "px", "Side of the square window over which census costs are summed (odd)."});
   v.number("dense_uniqueness_ratio", c.dense_uniqueness_ratio, {0.0, 2.0, "", "A pixel is invalid unless the best cost times (1 + this) is below every non-adjacent disparity's cost."});
-  v.number("dense_min_texture", c.dense_min_texture, {0.0, 255.0, "grey levels", "A pixel is invalid when the mean absolute horizontal central difference in its window is below this."});
+  v.number("dense_min_texture", c.dense_min_texture, {0.0, 255.0, "grey levels", "A pixel is invalid when the mean absolute horizontal central difference in its window is below this. Image noise of sigma s alone gives 2 s / sqrt(pi) = 1.13 s (the simulated camera, s = 2: 2.26), and census matching on such windows is random, so keep this above that for the camera in use (1 suits nearly noise-free images such as Middlebury's)."});
   v.integer_field("dense_lr_tolerance_px", c.dense_lr_tolerance_px, {0, 16, "px", "Left-right consistency: largest difference between the left and the right disparity."});
+  v.integer_field("dense_speckle_max_region_px", c.dense_speckle_max_region_px, {0, 1000000, "px", "Speckle filter: a 4-connected region of similar disparities with at most this many pixels is marked invalid (scattered wrong matches on weak texture); 0 switches it off."});
+  v.number("dense_speckle_max_step_px", c.dense_speckle_max_step_px, {0.0, 16.0, "px", "Speckle filter: neighbouring pixels whose disparities differ by at most this belong to one region."});
   v.integer_field("scan_min_obstacle_pixels", c.scan_min_obstacle_pixels, {1, 100, "px", "Pixels of a column that must lie above the floor before the nearest of them counts as an obstacle (rejects isolated mismatches)."});
   v.require(c.dense_window_px % 2 == 1, "dense_window_px", "must be odd");
   v.require(c.min_disparity_px < c.max_disparity_px, "max_disparity_px", "must be larger than min_disparity_px");
