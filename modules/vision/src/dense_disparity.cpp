@@ -10,38 +10,8 @@
 namespace stereoscout::vision {
 namespace {
 
-constexpr int kCensusRadius = 3;  // 7x7 census: 48 comparisons, fits 64 bits
-constexpr std::uint8_t kMaxCensusCost = 48;
-
-// Census costs of one disparity over a row: out[x] = popcount(left[x] ^ right[x - d]).
-// Integer popcount is exact, so the hardware instruction (chosen at run time where the CPU
-// has it) gives the same result as the portable version.
-void census_costs_portable(const std::uint64_t* left, const std::uint64_t* right, std::uint8_t* out, int first,
-                           int width, int d) {
-  for (int x = first; x < width; ++x) {
-    out[x] = static_cast<std::uint8_t>(__builtin_popcountll(left[x] ^ right[x - d]));
-  }
-}
-
-#if defined(__x86_64__) && defined(__GNUC__)
-__attribute__((target("popcnt"))) void census_costs_popcnt(const std::uint64_t* left, const std::uint64_t* right,
-                                                           std::uint8_t* out, int first, int width, int d) {
-  for (int x = first; x < width; ++x) {
-    out[x] = static_cast<std::uint8_t>(__builtin_popcountll(left[x] ^ right[x - d]));
-  }
-}
-#endif
-
-using CensusCostKernel = void (*)(const std::uint64_t*, const std::uint64_t*, std::uint8_t*, int, int, int);
-
-CensusCostKernel choose_census_kernel() {
-#if defined(__x86_64__) && defined(__GNUC__)
-  if (__builtin_cpu_supports("popcnt")) {
-    return census_costs_popcnt;
-  }
-#endif
-  return census_costs_portable;
-}
+using detail::kCensusRadius;
+using detail::kMaxCensusCost;
 
 }  // namespace
 
@@ -77,36 +47,12 @@ DenseDisparityMatcher::DenseDisparityMatcher(const DenseDisparityParams& params,
   best_disparity_.resize(static_cast<std::size_t>(width_));
   right_best_cost_.resize(static_cast<std::size_t>(width_));
   right_best_disparity_.resize(static_cast<std::size_t>(width_));
-  census_cost_kernel_ = choose_census_kernel();
+  kernels_ = detail::fastest_dense_kernels(params.allow_simd);
   gradient_integral_.resize(static_cast<std::size_t>(width_ + 1) * static_cast<std::size_t>(height_ + 1));
 }
 
 void DenseDisparityMatcher::allocate_output(cv::Mat& disparity) const {
   disparity.create(height_, width_, CV_32FC1);
-}
-
-// Loops over the 48 neighbour offsets outside the pixel loop, so the inner loop is a
-// straight compare-and-shift over a row (vectorised by the compiler).
-void DenseDisparityMatcher::census_transform(const cv::Mat& image, std::vector<std::uint64_t>& census) const {
-  std::fill(census.begin(), census.end(), 0);
-  const int first = kCensusRadius;
-  const int last = width_ - kCensusRadius;
-  for (int y = kCensusRadius; y < height_ - kCensusRadius; ++y) {
-    std::uint64_t* bits = &census[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_)];
-    const std::uint8_t* centre = image.ptr<std::uint8_t>(y);
-    for (int dy = -kCensusRadius; dy <= kCensusRadius; ++dy) {
-      const std::uint8_t* row = image.ptr<std::uint8_t>(y + dy);
-      for (int dx = -kCensusRadius; dx <= kCensusRadius; ++dx) {
-        if (dx == 0 && dy == 0) {
-          continue;
-        }
-        const std::uint8_t* neighbour = row + dx;
-        for (int x = first; x < last; ++x) {
-          bits[x] = (bits[x] << 1U) | static_cast<std::uint64_t>(neighbour[x] < centre[x]);
-        }
-      }
-    }
-  }
 }
 
 // Integral image of the absolute horizontal gradient of the left image (texture check).
@@ -152,74 +98,30 @@ void DenseDisparityMatcher::cost_row(int y, std::uint8_t* costs) const {
     for (int x = 0; x < first; ++x) {
       out[x] = kMaxCensusCost;
     }
-    census_cost_kernel_(left, right, out, first, width_, d);
+    kernels_.census_costs(left, right, out, first, width_, d);
   }
 }
 
-// Horizontal box sum of the column sums, per disparity: a sum of shifted rows rather than a
-// running sum, so the loop has no carried dependency and vectorises.
+// Horizontal box sum of the column sums, per disparity.
 void DenseDisparityMatcher::aggregate_row() {
-  for (int d = 0; d < disparities_; ++d) {
-    const std::uint16_t* column = &column_sums_[static_cast<std::size_t>(d) * static_cast<std::size_t>(width_)];
-    std::uint16_t* out = &aggregated_[static_cast<std::size_t>(d) * static_cast<std::size_t>(width_)];
-    const int begin = radius_;
-    const int end = width_ - radius_;
-    for (int x = begin; x < end; ++x) {
-      out[x] = column[x - radius_];
-    }
-    for (int k = -radius_ + 1; k <= radius_; ++k) {
-      const std::uint16_t* shifted = column + k;
-      for (int x = begin; x < end; ++x) {
-        out[x] = static_cast<std::uint16_t>(out[x] + shifted[x]);
-      }
-    }
-  }
+  kernels_.box_sum(column_sums_.data(), aggregated_.data(), disparities_, width_, radius_);
 }
 
 // Winners of one row for every left pixel (best and best non-adjacent cost) and for every
-// right pixel (for the left-right check). Disparities ascend, and only a strictly lower
-// cost replaces a winner, so ties go to the smaller disparity.
+// right pixel (for the left-right check).
 void DenseDisparityMatcher::find_winners() {
-  const int first_x = radius_ + kCensusRadius;
-  const int last_x = width_ - 1 - radius_ - kCensusRadius;
-  constexpr std::uint16_t kNoCost = 0xFFFF;
-  std::fill(best_cost_.begin(), best_cost_.end(), kNoCost);
-  std::fill(second_cost_.begin(), second_cost_.end(), kNoCost);
-  std::fill(best_disparity_.begin(), best_disparity_.end(), 0);
-  std::fill(right_best_cost_.begin(), right_best_cost_.end(), kNoCost);
-  std::fill(right_best_disparity_.begin(), right_best_disparity_.end(), -1);
-  for (int d = 0; d < disparities_; ++d) {
-    const std::uint16_t* costs = &aggregated_[static_cast<std::size_t>(d) * static_cast<std::size_t>(width_)];
-    const auto disparity = static_cast<std::int16_t>(d);
-    // Left pixel x searches d <= x - first_x.
-    for (int x = first_x + d; x <= last_x; ++x) {
-      const bool better = costs[x] < best_cost_[static_cast<std::size_t>(x)];
-      best_cost_[static_cast<std::size_t>(x)] = better ? costs[x] : best_cost_[static_cast<std::size_t>(x)];
-      best_disparity_[static_cast<std::size_t>(x)] = better ? disparity : best_disparity_[static_cast<std::size_t>(x)];
-    }
-    // Right pixel xr pairs with left pixel xr + d.
-    const std::uint16_t* shifted = costs + d;
-    for (int xr = first_x; xr + d <= last_x; ++xr) {
-      const bool better = shifted[xr] < right_best_cost_[static_cast<std::size_t>(xr)];
-      right_best_cost_[static_cast<std::size_t>(xr)] = better ? shifted[xr] : right_best_cost_[static_cast<std::size_t>(xr)];
-      right_best_disparity_[static_cast<std::size_t>(xr)] = better ? disparity : right_best_disparity_[static_cast<std::size_t>(xr)];
-    }
-  }
-  for (int d = 0; d < disparities_; ++d) {
-    const std::uint16_t* costs = &aggregated_[static_cast<std::size_t>(d) * static_cast<std::size_t>(width_)];
-    // Distinct arrays: __restrict lets the compiler vectorise this loop.
-    const std::int16_t* __restrict best = best_disparity_.data();
-    std::uint16_t* __restrict second = second_cost_.data();
-    const auto disparity = static_cast<std::int16_t>(d);
-    for (int x = first_x + d; x <= last_x; ++x) {
-      // |d - best| > 1 with signed 16-bit compares (SSE2 has no unsigned ones).
-      const auto gap = static_cast<std::int16_t>(disparity - best[x]);
-      const int far = static_cast<int>(gap > 1) | static_cast<int>(gap < -1);
-      // kNoCost where adjacent: an OR with all ones, so the load is unconditional (vectorises).
-      const auto masked = static_cast<std::uint16_t>(costs[x] | static_cast<std::uint16_t>(far - 1));
-      second[x] = masked < second[x] ? masked : second[x];
-    }
-  }
+  detail::WinnerBuffers buffers;
+  buffers.aggregated = aggregated_.data();
+  buffers.width = width_;
+  buffers.disparities = disparities_;
+  buffers.first_x = radius_ + kCensusRadius;
+  buffers.last_x = width_ - 1 - radius_ - kCensusRadius;
+  buffers.best_cost = best_cost_.data();
+  buffers.second_cost = second_cost_.data();
+  buffers.best_disparity = best_disparity_.data();
+  buffers.right_best_cost = right_best_cost_.data();
+  buffers.right_best_disparity = right_best_disparity_.data();
+  kernels_.winners(buffers);
 }
 
 // Validity checks and subpixel refinement of one row's winners.
@@ -279,8 +181,8 @@ void DenseDisparityMatcher::compute(const cv::Mat& left, const cv::Mat& right, c
     float* row = disparity.ptr<float>(y);
     std::fill(row, row + width_, kInvalidDisparity);  // cv::Mat::setTo would allocate
   }
-  census_transform(left, census_left_);
-  census_transform(right, census_right_);
+  kernels_.census(left.ptr<std::uint8_t>(0), left.step[0], width_, height_, census_left_.data());
+  kernels_.census(right.ptr<std::uint8_t>(0), right.step[0], width_, height_, census_right_.data());
   texture_integral(left);
   const int first_y = radius_ + kCensusRadius;
   const int last_y = height_ - 1 - radius_ - kCensusRadius;
@@ -293,20 +195,14 @@ void DenseDisparityMatcher::compute(const cv::Mat& left, const cv::Mat& right, c
       for (int row = y - radius_; row <= y + radius_; ++row) {
         std::uint8_t* costs = slot(row);
         cost_row(row, costs);
-        for (std::size_t i = 0; i < row_costs; ++i) {
-          column_sums_[i] = static_cast<std::uint16_t>(column_sums_[i] + costs[i]);
-        }
+        kernels_.add_costs(column_sums_.data(), costs, row_costs);
       }
     } else {
       // The row leaving the window and the row entering it share a ring slot.
       std::uint8_t* costs = slot(y + radius_);
-      for (std::size_t i = 0; i < row_costs; ++i) {
-        column_sums_[i] = static_cast<std::uint16_t>(column_sums_[i] - costs[i]);
-      }
+      kernels_.subtract_costs(column_sums_.data(), costs, row_costs);
       cost_row(y + radius_, costs);
-      for (std::size_t i = 0; i < row_costs; ++i) {
-        column_sums_[i] = static_cast<std::uint16_t>(column_sums_[i] + costs[i]);
-      }
+      kernels_.add_costs(column_sums_.data(), costs, row_costs);
     }
     aggregate_row();
     select_row(y, disparity.ptr<float>(y));

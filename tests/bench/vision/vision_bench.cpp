@@ -115,16 +115,20 @@ BENCHMARK(BM_IndexLookup)
     ->ArgNames({"entries", "leaf_checks"})
     ->Unit(benchmark::kMicrosecond);
 
+// simd 1: the build of the inner loops the CPU runs best (label: which); 0: the portable one.
 void BM_DenseDisparity(benchmark::State& state) {
-  DenseDisparityMatcher matcher(dense_params_from_config(core::VisionConfig{}), 640, 480);
+  DenseDisparityParams params = dense_params_from_config(core::VisionConfig{});
+  params.allow_simd = state.range(0) != 0;
+  DenseDisparityMatcher matcher(params, 640, 480);
   cv::Mat disparity;
   matcher.allocate_output(disparity);
   for (auto _ : state) {
     matcher.compute(room_view().frame.left, room_view().frame.right, disparity);
   }
   state.counters["density"] = static_cast<double>(matcher.stats().valid) / static_cast<double>(matcher.stats().pixels);
+  state.SetLabel(matcher.kernels_name());
 }
-BENCHMARK(BM_DenseDisparity)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DenseDisparity)->Arg(1)->Arg(0)->ArgName("simd")->Unit(benchmark::kMillisecond);
 
 void BM_ObstacleScan(benchmark::State& state) {
   DenseDisparityMatcher matcher(dense_params_from_config(core::VisionConfig{}), 640, 480);

@@ -1,7 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -75,6 +77,42 @@ TEST(DenseDisparity, RecoversAPlaneToSubpixelWithoutAllocating) {
   EXPECT_EQ(matcher.stats().valid + matcher.stats().rejected_texture + matcher.stats().rejected_uniqueness +
                 matcher.stats().rejected_left_right + matcher.stats().rejected_speckle + matcher.stats().border,
             matcher.stats().pixels);
+}
+
+// The vector (AVX2 / popcount) build of the inner loops gives the portable build's output bit
+// for bit: a scene with two planes, a blank band and noise exercises every check.
+TEST(DenseDisparity, SimdAndPortableBuildsGiveTheSameDisparities) {
+  const cv::Mat right = random_texture(320, 240, 5);
+  cv::Mat left = shift_right_image(right, 9.3);
+  shift_right_image(right, 23.6)(cv::Rect(120, 60, 120, 100)).copyTo(left(cv::Rect(120, 60, 120, 100)));
+  left(cv::Rect(40, 180, 200, 30)).setTo(128);
+  core::RandomStream random(9, core::StreamId{0, 0, 0});
+  for (int y = 0; y < left.rows; ++y) {
+    for (int x = 0; x < left.cols; ++x) {
+      const double noisy = left.at<std::uint8_t>(y, x) + random.gaussian(0.0, 3.0);
+      left.at<std::uint8_t>(y, x) = static_cast<std::uint8_t>(std::clamp(std::lround(noisy), 0L, 255L));
+    }
+  }
+  DenseDisparityParams params;
+  params.num_disparities = 48;
+  DenseDisparityMatcher fastest(params, 320, 240);
+  params.allow_simd = false;
+  DenseDisparityMatcher portable(params, 320, 240);
+  EXPECT_STREQ(portable.kernels_name(), "portable");
+  std::printf("fastest build of the inner loops here: %s\n", fastest.kernels_name());
+  cv::Mat fast_disparity;
+  cv::Mat portable_disparity;
+  fastest.allocate_output(fast_disparity);
+  portable.allocate_output(portable_disparity);
+  fastest.compute(left, right, fast_disparity);
+  portable.compute(left, right, portable_disparity);
+  ASSERT_GT(portable.stats().valid, 20000U);
+  EXPECT_GT(portable.stats().rejected_texture + portable.stats().rejected_uniqueness, 1000U);
+  EXPECT_EQ(std::memcmp(fast_disparity.data, portable_disparity.data, fast_disparity.total() * sizeof(float)), 0);
+  EXPECT_EQ(fastest.stats().valid, portable.stats().valid);
+  EXPECT_EQ(fastest.stats().rejected_uniqueness, portable.stats().rejected_uniqueness);
+  EXPECT_EQ(fastest.stats().rejected_left_right, portable.stats().rejected_left_right);
+  EXPECT_EQ(fastest.stats().rejected_speckle, portable.stats().rejected_speckle);
 }
 
 TEST(DenseDisparity, UntexturedAreaIsInvalidNotGuessed) {

@@ -23,6 +23,7 @@
 #include <opencv2/core/mat.hpp>
 
 #include "stereoscout/core/config/vision.hpp"
+#include "stereoscout/vision/dense_disparity_kernels.hpp"
 #include "stereoscout/vision/speckle_filter.hpp"
 
 namespace stereoscout::vision {
@@ -37,6 +38,9 @@ struct DenseDisparityParams {
   int lr_tolerance_px = 1;
   int speckle_max_region_px = 100;  // 0: no speckle filter
   double speckle_max_step_px = 1.0;
+  // Use the CPU's vector and popcount instructions where present (same output, bit for bit);
+  // off: the portable build of the inner loops (tests compare the two).
+  bool allow_simd = true;
 };
 
 DenseDisparityParams dense_params_from_config(const core::VisionConfig& vision);
@@ -61,11 +65,12 @@ class DenseDisparityMatcher {
   void allocate_output(cv::Mat& disparity) const;
 
   const DenseDisparityStats& stats() const { return stats_; }
+  // Which build of the inner loops runs ("portable", "popcnt", "avx2").
+  const char* kernels_name() const { return kernels_.name; }
   int width() const { return width_; }
   int height() const { return height_; }
 
  private:
-  void census_transform(const cv::Mat& image, std::vector<std::uint64_t>& census) const;
   void texture_integral(const cv::Mat& left);
   void cost_row(int y, std::uint8_t* costs) const;
   void aggregate_row();
@@ -89,7 +94,7 @@ class DenseDisparityMatcher {
   std::vector<std::int16_t> best_disparity_;
   std::vector<std::uint16_t> right_best_cost_;
   std::vector<std::int16_t> right_best_disparity_;
-  void (*census_cost_kernel_)(const std::uint64_t*, const std::uint64_t*, std::uint8_t*, int, int, int) = nullptr;
+  detail::DenseKernels kernels_;
   std::vector<std::int32_t> gradient_integral_;  // (width + 1) x (height + 1)
   SpeckleFilter speckle_filter_;
   DenseDisparityStats stats_;

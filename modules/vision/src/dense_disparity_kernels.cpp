@@ -1,0 +1,177 @@
+#include "stereoscout/vision/dense_disparity_kernels.hpp"
+
+#include <algorithm>
+
+namespace stereoscout::vision::detail {
+namespace {
+
+#define STEREOSCOUT_KERNEL_BODY inline __attribute__((always_inline))
+
+// Loops over the 48 neighbour offsets outside the pixel loop, so the inner loop is a
+// straight compare-and-shift over a row (vectorised by the compiler).
+STEREOSCOUT_KERNEL_BODY void census_body(const std::uint8_t* image, std::size_t stride, int width, int height,
+                                         std::uint64_t* census) {
+  std::fill(census, census + static_cast<std::size_t>(width) * static_cast<std::size_t>(height), std::uint64_t{0});
+  const int first = kCensusRadius;
+  const int last = width - kCensusRadius;
+  for (int y = kCensusRadius; y < height - kCensusRadius; ++y) {
+    std::uint64_t* __restrict bits = census + static_cast<std::size_t>(y) * static_cast<std::size_t>(width);
+    const std::uint8_t* centre = image + static_cast<std::size_t>(y) * stride;
+    for (int dy = -kCensusRadius; dy <= kCensusRadius; ++dy) {
+      const std::uint8_t* row = image + static_cast<std::size_t>(y + dy) * stride;
+      for (int dx = -kCensusRadius; dx <= kCensusRadius; ++dx) {
+        if (dx == 0 && dy == 0) {
+          continue;
+        }
+        const std::uint8_t* neighbour = row + dx;
+        for (int x = first; x < last; ++x) {
+          bits[x] = (bits[x] << 1U) | static_cast<std::uint64_t>(neighbour[x] < centre[x]);
+        }
+      }
+    }
+  }
+}
+
+// Integer popcount is exact, so the hardware instruction gives the portable result.
+STEREOSCOUT_KERNEL_BODY void census_costs_body(const std::uint64_t* left, const std::uint64_t* right,
+                                               std::uint8_t* out, int first, int width, int d) {
+  for (int x = first; x < width; ++x) {
+    out[x] = static_cast<std::uint8_t>(__builtin_popcountll(left[x] ^ right[x - d]));
+  }
+}
+
+STEREOSCOUT_KERNEL_BODY void add_costs_body(std::uint16_t* __restrict sums, const std::uint8_t* __restrict costs,
+                                            std::size_t count) {
+  for (std::size_t i = 0; i < count; ++i) {
+    sums[i] = static_cast<std::uint16_t>(sums[i] + costs[i]);
+  }
+}
+
+STEREOSCOUT_KERNEL_BODY void subtract_costs_body(std::uint16_t* __restrict sums, const std::uint8_t* __restrict costs,
+                                                 std::size_t count) {
+  for (std::size_t i = 0; i < count; ++i) {
+    sums[i] = static_cast<std::uint16_t>(sums[i] - costs[i]);
+  }
+}
+
+// A sum of shifted rows rather than a running sum, so the loop has no carried dependency
+// and vectorises.
+STEREOSCOUT_KERNEL_BODY void box_sum_body(const std::uint16_t* column_sums, std::uint16_t* aggregated,
+                                          int disparities, int width, int radius) {
+  for (int d = 0; d < disparities; ++d) {
+    const std::uint16_t* column = column_sums + static_cast<std::size_t>(d) * static_cast<std::size_t>(width);
+    std::uint16_t* __restrict out = aggregated + static_cast<std::size_t>(d) * static_cast<std::size_t>(width);
+    const int begin = radius;
+    const int end = width - radius;
+    for (int x = begin; x < end; ++x) {
+      out[x] = column[x - radius];
+    }
+    for (int k = -radius + 1; k <= radius; ++k) {
+      const std::uint16_t* shifted = column + k;
+      for (int x = begin; x < end; ++x) {
+        out[x] = static_cast<std::uint16_t>(out[x] + shifted[x]);
+      }
+    }
+  }
+}
+
+// Disparities ascend, and only a strictly lower cost replaces a winner, so ties go to the
+// smaller disparity.
+STEREOSCOUT_KERNEL_BODY void winners_body(const WinnerBuffers& b) {
+  constexpr std::uint16_t kNoCost = 0xFFFF;
+  const auto width = static_cast<std::size_t>(b.width);
+  std::fill(b.best_cost, b.best_cost + width, kNoCost);
+  std::fill(b.second_cost, b.second_cost + width, kNoCost);
+  std::fill(b.best_disparity, b.best_disparity + width, std::int16_t{0});
+  std::fill(b.right_best_cost, b.right_best_cost + width, kNoCost);
+  std::fill(b.right_best_disparity, b.right_best_disparity + width, std::int16_t{-1});
+  std::uint16_t* __restrict best_cost = b.best_cost;
+  std::int16_t* __restrict best_disparity = b.best_disparity;
+  std::uint16_t* __restrict right_cost = b.right_best_cost;
+  std::int16_t* __restrict right_disparity = b.right_best_disparity;
+  for (int d = 0; d < b.disparities; ++d) {
+    const std::uint16_t* costs = b.aggregated + static_cast<std::size_t>(d) * width;
+    const auto disparity = static_cast<std::int16_t>(d);
+    // Left pixel x searches d <= x - first_x.
+    for (int x = b.first_x + d; x <= b.last_x; ++x) {
+      const bool better = costs[x] < best_cost[x];
+      best_cost[x] = better ? costs[x] : best_cost[x];
+      best_disparity[x] = better ? disparity : best_disparity[x];
+    }
+    // Right pixel xr pairs with left pixel xr + d.
+    const std::uint16_t* shifted = costs + d;
+    for (int xr = b.first_x; xr + d <= b.last_x; ++xr) {
+      const bool better = shifted[xr] < right_cost[xr];
+      right_cost[xr] = better ? shifted[xr] : right_cost[xr];
+      right_disparity[xr] = better ? disparity : right_disparity[xr];
+    }
+  }
+  const std::int16_t* __restrict best = b.best_disparity;
+  std::uint16_t* __restrict second = b.second_cost;
+  for (int d = 0; d < b.disparities; ++d) {
+    const std::uint16_t* costs = b.aggregated + static_cast<std::size_t>(d) * width;
+    const auto disparity = static_cast<std::int16_t>(d);
+    for (int x = b.first_x + d; x <= b.last_x; ++x) {
+      // |d - best| > 1 with signed 16-bit compares (SSE2 has no unsigned ones).
+      const auto gap = static_cast<std::int16_t>(disparity - best[x]);
+      const int far = static_cast<int>(gap > 1) | static_cast<int>(gap < -1);
+      // kNoCost where adjacent: an OR with all ones, so the load is unconditional (vectorises).
+      const auto masked = static_cast<std::uint16_t>(costs[x] | static_cast<std::uint16_t>(far - 1));
+      second[x] = masked < second[x] ? masked : second[x];
+    }
+  }
+}
+
+// One build of every kernel per instruction set; the bodies are inlined into each.
+#define STEREOSCOUT_DEFINE_KERNELS(SUFFIX, ATTRIBUTES)                                                             \
+  ATTRIBUTES void census_##SUFFIX(const std::uint8_t* image, std::size_t stride, int width, int height,            \
+                                  std::uint64_t* census) {                                                         \
+    census_body(image, stride, width, height, census);                                                             \
+  }                                                                                                                \
+  ATTRIBUTES void census_costs_##SUFFIX(const std::uint64_t* left, const std::uint64_t* right, std::uint8_t* out,  \
+                                        int first, int width, int d) {                                             \
+    census_costs_body(left, right, out, first, width, d);                                                          \
+  }                                                                                                                \
+  ATTRIBUTES void add_costs_##SUFFIX(std::uint16_t* sums, const std::uint8_t* costs, std::size_t count) {          \
+    add_costs_body(sums, costs, count);                                                                            \
+  }                                                                                                                \
+  ATTRIBUTES void subtract_costs_##SUFFIX(std::uint16_t* sums, const std::uint8_t* costs, std::size_t count) {     \
+    subtract_costs_body(sums, costs, count);                                                                       \
+  }                                                                                                                \
+  ATTRIBUTES void box_sum_##SUFFIX(const std::uint16_t* column_sums, std::uint16_t* aggregated, int disparities,   \
+                                   int width, int radius) {                                                        \
+    box_sum_body(column_sums, aggregated, disparities, width, radius);                                             \
+  }                                                                                                                \
+  ATTRIBUTES void winners_##SUFFIX(const WinnerBuffers& buffers) { winners_body(buffers); }                        \
+  DenseKernels kernels_##SUFFIX() {                                                                                \
+    return {census_##SUFFIX, census_costs_##SUFFIX, add_costs_##SUFFIX, subtract_costs_##SUFFIX,                   \
+            box_sum_##SUFFIX,  winners_##SUFFIX,      #SUFFIX};                                                     \
+  }
+
+STEREOSCOUT_DEFINE_KERNELS(portable, )
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define STEREOSCOUT_HAS_AVX2_KERNELS 1
+STEREOSCOUT_DEFINE_KERNELS(popcnt, __attribute__((target("popcnt"))))
+STEREOSCOUT_DEFINE_KERNELS(avx2, __attribute__((target("avx2,popcnt"))))
+#endif
+
+}  // namespace
+
+DenseKernels portable_dense_kernels() { return kernels_portable(); }
+
+DenseKernels fastest_dense_kernels(bool allow_simd) {
+#if defined(STEREOSCOUT_HAS_AVX2_KERNELS)
+  if (allow_simd && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt")) {
+    return kernels_avx2();
+  }
+  if (allow_simd && __builtin_cpu_supports("popcnt")) {
+    return kernels_popcnt();
+  }
+#else
+  static_cast<void>(allow_simd);
+#endif
+  return kernels_portable();
+}
+
+}  // namespace stereoscout::vision::detail
