@@ -42,6 +42,7 @@ DenseDisparityMatcher::DenseDisparityMatcher(const DenseDisparityParams& params,
   cost_ring_.resize(row_costs * static_cast<std::size_t>(2 * radius_ + 1));
   column_sums_.resize(row_costs);
   aggregated_.resize(row_costs);
+  box_scratch_.resize(static_cast<std::size_t>(detail::kMaxBoxLevels) * static_cast<std::size_t>(width_));
   best_cost_.resize(static_cast<std::size_t>(width_));
   second_cost_.resize(static_cast<std::size_t>(width_));
   best_disparity_.resize(static_cast<std::size_t>(width_));
@@ -104,7 +105,7 @@ void DenseDisparityMatcher::cost_row(int y, std::uint8_t* costs) const {
 
 // Horizontal box sum of the column sums, per disparity.
 void DenseDisparityMatcher::aggregate_row() {
-  kernels_.box_sum(column_sums_.data(), aggregated_.data(), disparities_, width_, radius_);
+  kernels_.box_sum(column_sums_.data(), aggregated_.data(), box_scratch_.data(), disparities_, width_, radius_);
 }
 
 // Winners of one row for every left pixel (best and best non-adjacent cost) and for every

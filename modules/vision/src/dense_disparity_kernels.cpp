@@ -54,23 +54,50 @@ STEREOSCOUT_KERNEL_BODY void subtract_costs_body(std::uint16_t* __restrict sums,
   }
 }
 
-// A sum of shifted rows rather than a running sum, so the loop has no carried dependency
-// and vectorises.
+// Box sums by doubling: P1 = the column sums, P2k[i] = Pk[i] + Pk[i + k], and a window of
+// w = 2 radius + 1 columns is the sum of the P's of w's binary digits side by side (w = 7:
+// P4 + P2 + P1, 4 additions per element instead of 6). Straight loops without a carried
+// dependency, so they vectorise; integer sums, so the grouping does not change the result.
 STEREOSCOUT_KERNEL_BODY void box_sum_body(const std::uint16_t* column_sums, std::uint16_t* aggregated,
-                                          int disparities, int width, int radius) {
+                                          std::uint16_t* scratch, int disparities, int width, int radius) {
+  const int window = 2 * radius + 1;
+  const int outputs = width - window + 1;  // x = radius + i, i in [0, outputs)
+  if (outputs <= 0) {
+    return;
+  }
   for (int d = 0; d < disparities; ++d) {
-    const std::uint16_t* column = column_sums + static_cast<std::size_t>(d) * static_cast<std::size_t>(width);
-    std::uint16_t* __restrict out = aggregated + static_cast<std::size_t>(d) * static_cast<std::size_t>(width);
-    const int begin = radius;
-    const int end = width - radius;
-    for (int x = begin; x < end; ++x) {
-      out[x] = column[x - radius];
-    }
-    for (int k = -radius + 1; k <= radius; ++k) {
-      const std::uint16_t* shifted = column + k;
-      for (int x = begin; x < end; ++x) {
-        out[x] = static_cast<std::uint16_t>(out[x] + shifted[x]);
+    const std::uint16_t* levels[kMaxBoxLevels + 1] = {};
+    levels[0] = column_sums + static_cast<std::size_t>(d) * static_cast<std::size_t>(width);
+    int top = 0;
+    for (int span = 1; 2 * span <= window; span *= 2) {
+      const std::uint16_t* previous = levels[top];
+      std::uint16_t* __restrict next = scratch + static_cast<std::size_t>(top) * static_cast<std::size_t>(width);
+      for (int i = 0; i + 2 * span <= width; ++i) {
+        next[i] = static_cast<std::uint16_t>(previous[i] + previous[i + span]);
       }
+      levels[++top] = next;
+    }
+    std::uint16_t* __restrict out =
+        aggregated + static_cast<std::size_t>(d) * static_cast<std::size_t>(width) + static_cast<std::size_t>(radius);
+    int offset = 0;
+    bool first = true;
+    for (int level = top; level >= 0; --level) {
+      const int span = 1 << level;
+      if ((window & span) == 0) {
+        continue;
+      }
+      const std::uint16_t* part = levels[level] + offset;
+      if (first) {
+        for (int i = 0; i < outputs; ++i) {
+          out[i] = part[i];
+        }
+        first = false;
+      } else {
+        for (int i = 0; i < outputs; ++i) {
+          out[i] = static_cast<std::uint16_t>(out[i] + part[i]);
+        }
+      }
+      offset += span;
     }
   }
 }
@@ -138,9 +165,9 @@ STEREOSCOUT_KERNEL_BODY void winners_body(const WinnerBuffers& b) {
   ATTRIBUTES void subtract_costs_##SUFFIX(std::uint16_t* sums, const std::uint8_t* costs, std::size_t count) {     \
     subtract_costs_body(sums, costs, count);                                                                       \
   }                                                                                                                \
-  ATTRIBUTES void box_sum_##SUFFIX(const std::uint16_t* column_sums, std::uint16_t* aggregated, int disparities,   \
-                                   int width, int radius) {                                                        \
-    box_sum_body(column_sums, aggregated, disparities, width, radius);                                             \
+  ATTRIBUTES void box_sum_##SUFFIX(const std::uint16_t* column_sums, std::uint16_t* aggregated,                    \
+                                   std::uint16_t* scratch, int disparities, int width, int radius) {               \
+    box_sum_body(column_sums, aggregated, scratch, disparities, width, radius);                                    \
   }                                                                                                                \
   ATTRIBUTES void winners_##SUFFIX(const WinnerBuffers& buffers) { winners_body(buffers); }                        \
   DenseKernels kernels_##SUFFIX() {                                                                                \

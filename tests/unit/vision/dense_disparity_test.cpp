@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <vector>
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -113,6 +114,33 @@ TEST(DenseDisparity, SimdAndPortableBuildsGiveTheSameDisparities) {
   EXPECT_EQ(fastest.stats().rejected_uniqueness, portable.stats().rejected_uniqueness);
   EXPECT_EQ(fastest.stats().rejected_left_right, portable.stats().rejected_left_right);
   EXPECT_EQ(fastest.stats().rejected_speckle, portable.stats().rejected_speckle);
+}
+
+// The box sum by doubling equals the plain window sum for every window the config allows,
+// in both builds.
+TEST(DenseDisparity, BoxSumByDoublingIsTheWindowSum) {
+  const int width = 97;
+  const int disparities = 3;
+  std::vector<std::uint16_t> columns(static_cast<std::size_t>(width * disparities));
+  core::RandomStream random(4, core::StreamId{0, 0, 0});
+  for (std::uint16_t& value : columns) {
+    value = static_cast<std::uint16_t>(random.uniform_index(48U * 31U));
+  }
+  std::vector<std::uint16_t> scratch(static_cast<std::size_t>(detail::kMaxBoxLevels * width));
+  for (const detail::DenseKernels& kernels : {detail::portable_dense_kernels(), detail::fastest_dense_kernels(true)}) {
+    for (int window = 1; window <= 31; window += 2) {
+      const int radius = window / 2;
+      std::vector<std::uint16_t> out(columns.size(), 0);
+      kernels.box_sum(columns.data(), out.data(), scratch.data(), disparities, width, radius);
+      for (int d = 0; d < disparities; ++d) {
+        for (int x = radius; x < width - radius; ++x) {
+          int sum = 0;
+          for (int k = -radius; k <= radius; ++k) sum += columns[static_cast<std::size_t>(d * width + x + k)];
+          ASSERT_EQ(out[static_cast<std::size_t>(d * width + x)], sum) << kernels.name << " window " << window << " x " << x;
+        }
+      }
+    }
+  }
 }
 
 TEST(DenseDisparity, UntexturedAreaIsInvalidNotGuessed) {

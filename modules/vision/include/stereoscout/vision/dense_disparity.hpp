@@ -88,6 +88,7 @@ class DenseDisparityMatcher {
   std::vector<std::uint8_t> cost_ring_;       // window rows of [disparity][x] census costs
   std::vector<std::uint16_t> column_sums_;    // [disparity][x], summed over the window rows
   std::vector<std::uint16_t> aggregated_;     // [disparity][x], summed over the window
+  std::vector<std::uint16_t> box_scratch_;    // doubling levels of the box sum
   // Per-column winner search state of one row (structure of arrays, so loops vectorise).
   std::vector<std::uint16_t> best_cost_;
   std::vector<std::uint16_t> second_cost_;

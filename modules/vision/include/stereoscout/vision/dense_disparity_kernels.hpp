@@ -11,6 +11,8 @@ namespace stereoscout::vision::detail {
 
 inline constexpr int kCensusRadius = 3;  // 7x7 census: 48 comparisons, fits 64 bits
 inline constexpr std::uint8_t kMaxCensusCost = 48;
+// Doubling levels of the box sum beyond the column sums: enough for windows up to 63 wide.
+inline constexpr int kMaxBoxLevels = 5;
 
 struct WinnerBuffers {
   const std::uint16_t* aggregated = nullptr;  // [disparity][x]
@@ -33,8 +35,10 @@ struct DenseKernels {
                        int d) = nullptr;
   void (*add_costs)(std::uint16_t* sums, const std::uint8_t* costs, std::size_t count) = nullptr;
   void (*subtract_costs)(std::uint16_t* sums, const std::uint8_t* costs, std::size_t count) = nullptr;
-  // Horizontal box sum (2 radius + 1 wide) of every disparity's column sums, x in [radius, width - radius).
-  void (*box_sum)(const std::uint16_t* column_sums, std::uint16_t* aggregated, int disparities, int width, int radius) = nullptr;
+  // Horizontal box sum (2 radius + 1 wide) of every disparity's column sums, x in [radius,
+  // width - radius); scratch: kMaxBoxLevels x width.
+  void (*box_sum)(const std::uint16_t* column_sums, std::uint16_t* aggregated, std::uint16_t* scratch, int disparities,
+                  int width, int radius) = nullptr;
   // Best and best non-adjacent cost per left pixel, best per right pixel (ties: smaller disparity).
   void (*winners)(const WinnerBuffers& buffers) = nullptr;
   const char* name = "";
