@@ -2,6 +2,10 @@
 
 #include <algorithm>
 
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#include <immintrin.h>
+#endif
+
 namespace stereoscout::vision::detail {
 namespace {
 
@@ -181,6 +185,41 @@ STEREOSCOUT_DEFINE_KERNELS(portable, )
 #define STEREOSCOUT_HAS_AVX2_KERNELS 1
 STEREOSCOUT_DEFINE_KERNELS(popcnt, __attribute__((target("popcnt"))))
 STEREOSCOUT_DEFINE_KERNELS(avx2, __attribute__((target("avx2,popcnt"))))
+
+// Census costs of 16 pixels at a time in AVX2 registers: the popcount of each byte of
+// left ^ right from a 16-entry table (vpshufb on both nibbles), summed per 64-bit census by
+// vpsadbw; the four 4-pixel results are interleaved into bytes and put back in pixel order.
+// Exact integer counts, the same as the popcount instruction; the tail runs the scalar loop.
+__attribute__((target("avx2,popcnt"))) void census_costs_avx2_table(const std::uint64_t* left,
+                                                                    const std::uint64_t* right, std::uint8_t* out,
+                                                                    int first, int width, int d) {
+  const __m256i table = _mm256_setr_epi8(0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4, 0, 1, 1, 2, 1, 2, 2, 3, 1, 2,
+                                         2, 3, 2, 3, 3, 4);
+  const __m256i nibble = _mm256_set1_epi8(0x0F);
+  const __m256i zero = _mm256_setzero_si256();
+  const __m256i low_dwords = _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7);
+  const __m128i pixel_order = _mm_setr_epi8(0, 4, 8, 12, 1, 5, 9, 13, 2, 6, 10, 14, 3, 7, 11, 15);
+  int x = first;
+  for (; x + 16 <= width; x += 16) {
+    __m256i packed = zero;
+    for (int k = 0; k < 4; ++k) {
+      const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(left + x + 4 * k));
+      const __m256i b = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(right + x + 4 * k - d));
+      const __m256i bits = _mm256_xor_si256(a, b);
+      const __m256i low = _mm256_and_si256(bits, nibble);
+      const __m256i high = _mm256_and_si256(_mm256_srli_epi16(bits, 4), nibble);
+      const __m256i bytes = _mm256_add_epi8(_mm256_shuffle_epi8(table, low), _mm256_shuffle_epi8(table, high));
+      // Each 64-bit lane j now holds the cost of pixel x + 4k + j (at most 64): byte k of it.
+      packed = _mm256_or_si256(packed, _mm256_slli_epi64(_mm256_sad_epu8(bytes, zero), 8 * k));
+    }
+    // Low dword of lane j = costs of pixels x + j, x + 4 + j, x + 8 + j, x + 12 + j.
+    const __m128i lanes = _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(packed, low_dwords));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out + x), _mm_shuffle_epi8(lanes, pixel_order));
+  }
+  for (; x < width; ++x) {
+    out[x] = static_cast<std::uint8_t>(__builtin_popcountll(left[x] ^ right[x - d]));
+  }
+}
 #endif
 
 }  // namespace
@@ -190,7 +229,9 @@ DenseKernels portable_dense_kernels() { return kernels_portable(); }
 DenseKernels fastest_dense_kernels(bool allow_simd) {
 #if defined(STEREOSCOUT_HAS_AVX2_KERNELS)
   if (allow_simd && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt")) {
-    return kernels_avx2();
+    DenseKernels kernels = kernels_avx2();
+    kernels.census_costs = census_costs_avx2_table;
+    return kernels;
   }
   if (allow_simd && __builtin_cpu_supports("popcnt")) {
     return kernels_popcnt();
