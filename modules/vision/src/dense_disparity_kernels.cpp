@@ -11,26 +11,45 @@ namespace {
 
 #define STEREOSCOUT_KERNEL_BODY inline __attribute__((always_inline))
 
-// Loops over the 48 neighbour offsets outside the pixel loop, so the inner loop is a
-// straight compare-and-shift over a row (vectorised by the compiler).
+// Bit 47 - k of a pixel's census is "neighbour k is darker than the centre", neighbours k in
+// row-major order of the 7x7 window without its centre. Built in bytes (8 neighbours each,
+// so the compares run 32 pixels to an AVX2 register instead of 4), over blocks of pixels
+// on the stack, then the six bytes are joined into the 64-bit word: the same bits.
 STEREOSCOUT_KERNEL_BODY void census_body(const std::uint8_t* image, std::size_t stride, int width, int height,
                                          std::uint64_t* census) {
+  constexpr int kBlock = 64;
+  constexpr int kGroups = 6;  // 48 neighbours / 8
   std::fill(census, census + static_cast<std::size_t>(width) * static_cast<std::size_t>(height), std::uint64_t{0});
   const int first = kCensusRadius;
   const int last = width - kCensusRadius;
   for (int y = kCensusRadius; y < height - kCensusRadius; ++y) {
-    std::uint64_t* __restrict bits = census + static_cast<std::size_t>(y) * static_cast<std::size_t>(width);
-    const std::uint8_t* centre = image + static_cast<std::size_t>(y) * stride;
-    for (int dy = -kCensusRadius; dy <= kCensusRadius; ++dy) {
-      const std::uint8_t* row = image + static_cast<std::size_t>(y + dy) * stride;
-      for (int dx = -kCensusRadius; dx <= kCensusRadius; ++dx) {
-        if (dx == 0 && dy == 0) {
-          continue;
+    std::uint64_t* bits = census + static_cast<std::size_t>(y) * static_cast<std::size_t>(width);
+    for (int start = first; start < last; start += kBlock) {
+      const int count = std::min(kBlock, last - start);
+      std::uint8_t groups[kGroups][kBlock] = {};
+      const std::uint8_t* centre = image + static_cast<std::size_t>(y) * stride + start;
+      int neighbour_index = 0;
+      for (int dy = -kCensusRadius; dy <= kCensusRadius; ++dy) {
+        const std::uint8_t* row = image + static_cast<std::size_t>(y + dy) * stride + start;
+        for (int dx = -kCensusRadius; dx <= kCensusRadius; ++dx) {
+          if (dx == 0 && dy == 0) {
+            continue;
+          }
+          std::uint8_t* __restrict group = groups[neighbour_index / 8];
+          const std::uint8_t* neighbour = row + dx;
+          for (int i = 0; i < count; ++i) {
+            group[i] = static_cast<std::uint8_t>((group[i] << 1U) | static_cast<unsigned>(neighbour[i] < centre[i]));
+          }
+          ++neighbour_index;
         }
-        const std::uint8_t* neighbour = row + dx;
-        for (int x = first; x < last; ++x) {
-          bits[x] = (bits[x] << 1U) | static_cast<std::uint64_t>(neighbour[x] < centre[x]);
+      }
+      std::uint64_t* __restrict out = bits + start;
+      for (int i = 0; i < count; ++i) {
+        std::uint64_t word = 0;
+        for (int g = 0; g < kGroups; ++g) {
+          word = (word << 8U) | groups[g][i];
         }
+        out[i] = word;
       }
     }
   }

@@ -143,6 +143,31 @@ TEST(DenseDisparity, BoxSumByDoublingIsTheWindowSum) {
   }
 }
 
+// The census kernels give the definition's bits: bit 47 - k set when neighbour k (row-major
+// over the 7x7 window, centre left out) is darker than the centre; borders 0.
+TEST(DenseDisparity, CensusTransformMatchesTheDefinition) {
+  const cv::Mat image = random_texture(83, 29, 6);
+  for (const detail::DenseKernels& kernels : {detail::portable_dense_kernels(), detail::fastest_dense_kernels(true)}) {
+    std::vector<std::uint64_t> census(static_cast<std::size_t>(image.total()), 1);
+    kernels.census(image.ptr<std::uint8_t>(0), image.step[0], image.cols, image.rows, census.data());
+    for (int y = 0; y < image.rows; ++y) {
+      for (int x = 0; x < image.cols; ++x) {
+        std::uint64_t expected = 0;
+        if (y >= 3 && y < image.rows - 3 && x >= 3 && x < image.cols - 3) {
+          for (int dy = -3; dy <= 3; ++dy) {
+            for (int dx = -3; dx <= 3; ++dx) {
+              if (dx == 0 && dy == 0) continue;
+              expected = (expected << 1U) |
+                         static_cast<std::uint64_t>(image.at<std::uint8_t>(y + dy, x + dx) < image.at<std::uint8_t>(y, x));
+            }
+          }
+        }
+        ASSERT_EQ(census[static_cast<std::size_t>(y * image.cols + x)], expected) << kernels.name << " " << x << "," << y;
+      }
+    }
+  }
+}
+
 TEST(DenseDisparity, UntexturedAreaIsInvalidNotGuessed) {
   cv::Mat right = random_texture(200, 120, 12);
   right(cv::Rect(80, 30, 60, 60)).setTo(100);
