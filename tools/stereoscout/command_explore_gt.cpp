@@ -81,6 +81,9 @@ int run_explore_gt(int argc, char** argv) {
       continue;
     }
     const std::string line = explore_gt_json(world.name, result);
+    for (const std::string& collision : result.collision_log) {
+      std::fprintf(stderr, "stereoscout explore-gt: %s: collision at %s\n", world.name.c_str(), collision.c_str());
+    }
     std::printf("%s\n", line.c_str());
     std::fflush(stdout);
     if (results.is_open()) results << line << "\n";

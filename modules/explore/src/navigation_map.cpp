@@ -212,10 +212,14 @@ void NavigationMap::classify(const Eigen::Vector2d& robot, const Eigen::Vector2d
   }
 }
 
-// The robot stands there, so nothing else can: an occupied cell under it is a trace of
+// The robot stands there, so nothing else can: an occupied cell deep under it is a trace of
 // something that has gone (a person who walked into it), not an obstacle to plan around.
+// "Deep": a cell centre more than a cell inside the disc. The cell of an obstacle the robot
+// merely grazes lies farther out (its centre is within half a cell diagonal of the surface)
+// and stays an obstacle, so the plan leads away from it.
 bool NavigationMap::under_robot(int x, int y) const {
-  return (grid_.center(x, y) - robot_).squaredNorm() < params_.robot_radius_m * params_.robot_radius_m;
+  const double depth = std::max(0.0, params_.robot_radius_m - grid_.resolution_m);
+  return (grid_.center(x, y) - robot_).squaredNorm() < depth * depth;
 }
 
 double NavigationMap::occupied_distance_m(int x, int y) const { return site_distance_m(occupied_site_.get(), x, y); }

@@ -48,8 +48,10 @@ bool Simulator::collides(const Eigen::Vector2d& here, const Eigen::Vector2d& the
   if (obstacles_.disc_collides(there, robot_.radius_m)) return true;
   for (std::size_t i = 0; i < world_.people.size(); ++i) {
     const Eigen::Vector2d person = world_.person_position(i, time_s());
-    const double next_distance = (person - there).norm();
-    if (next_distance < robot_.radius_m + world_.people[i].radius && next_distance < (person - here).norm()) return true;
+    // Ours only when the step makes a contact that standing still would not have: a contact
+    // the person made (walking into the robot, overtaking it) lasts until they walk on.
+    const double limit = robot_.radius_m + world_.people[i].radius;
+    if ((person - there).norm() < limit && (person - here).norm() >= limit) return true;
   }
   return false;
 }

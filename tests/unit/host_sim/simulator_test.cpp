@@ -208,6 +208,19 @@ TEST(Simulator, APersonWalkingIntoTheRobotIsTheirCollisionNotOurs) {
   EXPECT_GT(simulator.true_pose().theta, 1.0);  // the turn was not blocked
 }
 
+TEST(Simulator, APersonOvertakingTheRobotIsTheirCollision) {
+  // The robot drives east along y = 10 at 0.12 m/s; a person walks east along y = 10.4 at
+  // 0.5 m/s from behind, brushes its disc and walks on ahead.
+  const World world =
+      load_or_fail(hall_yaml(false) + "people:\n  - {waypoints: [[6, 10.4], [19, 10.4]], speed: 0.5}\n");
+  Simulator simulator(world, core::RobotConfig{}, core::CameraConfig{}, noiseless(), 1);
+  simulator.command({0.12, 0.0});
+  simulator.step(20.0);
+  EXPECT_EQ(simulator.collision_count(), 0U);
+  EXPECT_EQ(simulator.person_contact_count(), 1U);
+  EXPECT_NEAR(simulator.true_pose().x, 10.0 + 0.12 * 20.0, 1e-9);
+}
+
 TEST(Simulator, DrivingIntoAPersonIsOurCollision) {
   // A person stands at (12, 10); the robot drives at them from (10, 10).
   const World world =

@@ -4,8 +4,9 @@
 // propagating the nearest site), the traversability class of each cell for the robot's
 // footprint, step costs for A*, and the set of cells reachable from the robot (flood fill).
 //
-// Occupied cells under the robot's disc where it stands are ignored (nothing else can be
-// there; they are traces of a person who walked into the robot).
+// Occupied cells deep under the robot's disc where it stands (centre more than a cell inside
+// it) are ignored: nothing else can be there; they are traces of a person who walked into the
+// robot. A grazed obstacle's cell lies farther out and stays.
 //
 // Unobservable pockets: an unknown region (4-connected, so that a diagonal wall line closes
 // it) that does not reach the window's edge and covers at most explore.max_pocket_area_m2 is

@@ -7,13 +7,12 @@
 //
 // Kinematics: differential drive (unicycle) at the commanded velocities, clamped to the
 // robot's limits (paper: 0.12 m/s, 8 deg/s), no acceleration limits. Collision: if the next
-// integration step would bring the robot's disc into an obstacle of its height band, or
-// closer to a person whose disc it would overlap, the robot stays, its command is zeroed and
+// integration step would bring the robot's disc into an obstacle of its height band, or into
+// a person it does not touch where it stands, the robot stays, its command is zeroed and
 // collision_count() goes up by one; a new command lets it move again. People walk their
-// loops regardless of the robot: a person who walks into a robot that is stopped, turning in
-// place or moving away is the person's collision, not the robot's; each such contact (start
-// of an overlap) is counted in person_contact_count(), and the robot may still turn or back
-// away.
+// loops regardless of the robot: a person who walks into the robot (stopped, turning, or
+// overtaken from behind) is the person's collision, not the robot's; each such contact
+// (start of an overlap) is counted in person_contact_count(), and lasts until they walk on.
 //
 // Odometry: at robot.odometry_rate_hz the true motion since the last reading is corrupted by
 // the noise model of the floor under the robot (config sim.tile / sim.carpet) and integrated
@@ -80,8 +79,8 @@ class Simulator {
 
  private:
   void integrate(double dt_s);
-  // The step from `here` to `there` brings the disc into an obstacle or towards a person it
-  // would overlap.
+  // The step from `here` to `there` brings the disc into an obstacle, or into a person it
+  // does not touch at `here`.
   bool collides(const Eigen::Vector2d& here, const Eigen::Vector2d& there) const;
   void count_person_contacts();
   void emit_odometry();
