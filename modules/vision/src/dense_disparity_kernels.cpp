@@ -38,7 +38,8 @@ STEREOSCOUT_KERNEL_BODY void census_body(const std::uint8_t* image, std::size_t 
           std::uint8_t* __restrict group = groups[neighbour_index / 8];
           const std::uint8_t* neighbour = row + dx;
           for (int i = 0; i < count; ++i) {
-            group[i] = static_cast<std::uint8_t>((group[i] << 1U) | static_cast<unsigned>(neighbour[i] < centre[i]));
+            const unsigned darker = static_cast<unsigned>(neighbour[i] < centre[i]);
+            group[i] = static_cast<std::uint8_t>((static_cast<unsigned>(group[i]) << 1U) | darker);
           }
           ++neighbour_index;
         }
