@@ -287,14 +287,21 @@ void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
 
 bool Explorer::disc_is_clear(const GridView& grid, const Eigen::Vector2d& centre, const Eigen::Vector2d& robot) const {
   const double radius = params_.robot_radius_m;
+  const double deep = std::max(0.0, radius - grid.resolution_m);
   const int reach = static_cast<int>(std::ceil(radius / grid.resolution_m)) + 1;
   const Eigen::Vector2i middle = grid.cell_of(centre);
   for (int y = middle.y() - reach; y <= middle.y() + reach; ++y) {
     for (int x = middle.x() - reach; x <= middle.x() + reach; ++x) {
       if (!grid.contains(x, y) || grid.at(x, y) != CellState::occupied) continue;
       const Eigen::Vector2d cell = grid.center(x, y);
-      // Cells the disc already overlaps where it stands are not "moving into" them.
-      if ((cell - centre).norm() < radius && (cell - robot).norm() >= radius) return false;
+      const double ahead = (cell - centre).norm();
+      if (ahead >= radius) continue;
+      // A cell the disc already overlaps where it stands does not stop it, unless the move
+      // goes deeper into it (a grazed obstacle: pushing on would be a collision); cells deep
+      // under the robot are traces of a person who walked into it (NavigationMap ignores them).
+      const double now = (cell - robot).norm();
+      if (now >= radius) return false;
+      if (now >= deep && ahead < now) return false;
     }
   }
   return true;
