@@ -122,6 +122,24 @@ TEST(Explorer, ASafetyStopLooksAroundThenResumesTheSameGoal) {
   for (const Eigen::Vector2i& cell : explorer.plan().cells) EXPECT_NE(cell, Eigen::Vector2i(19, 30));
 }
 
+TEST(Explorer, DoesNotPushDeeperIntoAnObstacleItGrazes) {
+  Corridor scene;
+  Explorer explorer(no_look_params(100, 60));
+  ASSERT_GT(explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.0, true)).drive.linear_mps, 0.0);
+  // A cell whose centre is 0.29 m ahead-left: inside the 0.35 m disc already, not deep under it.
+  scene.grid.set(17, 31, CellState::occupied);
+  const ExploreOutput stopped = explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.1, false));
+  EXPECT_EQ(stopped.drive.linear_mps, 0.0);
+  EXPECT_EQ(explorer.counters().safety_stops, 1U);
+  // Deep under the robot (0.11 m from its centre: a person's trace), it does not stop it.
+  Corridor trace;
+  Explorer unblocked(no_look_params(100, 60));
+  ASSERT_GT(unblocked.step(input_at(trace.grid.view(), 1.5, 3.0, 0.0, 0.0, true)).drive.linear_mps, 0.0);
+  trace.grid.set(15, 30, CellState::occupied);
+  EXPECT_GT(unblocked.step(input_at(trace.grid.view(), 1.5, 3.0, 0.0, 0.1, false)).drive.linear_mps, 0.0);
+  EXPECT_EQ(unblocked.counters().safety_stops, 0U);
+}
+
 TEST(Explorer, EmergencyStopHaltsInTheSameTickAndResumes) {
   Corridor scene;
   Explorer explorer(no_look_params(100, 60));
