@@ -6,7 +6,7 @@
 namespace stereoscout::core {
 
 struct VisionConfig {
-  int max_features = 1000;
+  int max_features = 500;
   double sigma_u_px = 10.0;
   double sigma_v_px = 10.0;
   double sigma_d_px = 0.5;
@@ -15,7 +15,7 @@ struct VisionConfig {
   double max_disparity_px = 128.0;
   double match_ratio = 0.8;
   bool stereo_cross_check = true;
-  int index_capacity = 100000;
+  int index_capacity = 400000;
   int candidate_min_frames = 3;
   int index_max_leaf_checks = 64;
   double floor_tolerance_m = 0.05;
@@ -25,7 +25,7 @@ struct VisionConfig {
   double sift_contrast_threshold = 0.04;
   double sift_edge_threshold = 10.0;
   double sift_sigma = 1.6;
-  bool sift_parallel = false;
+  bool sift_parallel = true;
   // Descriptor index.
   double index_match_distance = 180.0;
   int index_bucket_size = 16;
@@ -42,7 +42,7 @@ struct VisionConfig {
 
 inline void describe(ConfigVisitor& v, VisionConfig& c) {
   v.begin_section("vision", "SIFT landmarks, stereo triangulation, descriptor index and the 2.5D obstacle scan (paper IV, V).");
-  v.integer_field("max_features", c.max_features, {16, 20000, "", "Most SIFT keypoints kept per image."});
+  v.integer_field("max_features", c.max_features, {16, 20000, "", "Most SIFT keypoints kept per image (the strongest). 500 keeps the simulated lab near the paper's landmark count per metre; 1000 filled the landmark pools and the index within 5 minutes (docs/results.md)."});
   v.number("sigma_u_px", c.sigma_u_px, {0.01, 100.0, "px", "Column noise of a stereo point (paper 10)."});
   v.number("sigma_v_px", c.sigma_v_px, {0.01, 100.0, "px", "Row noise of a stereo point (paper 10)."});
   v.number("sigma_d_px", c.sigma_d_px, {0.01, 20.0, "px", "Disparity noise of a stereo point (paper 0.5)."});
@@ -51,7 +51,7 @@ inline void describe(ConfigVisitor& v, VisionConfig& c) {
   v.number("max_disparity_px", c.max_disparity_px, {1.0, 1000.0, "px", "Largest disparity accepted (bounds the nearest point)."});
   v.number("match_ratio", c.match_ratio, {0.1, 1.0, "", "Distinctiveness test: best distance below this times the second best."});
   v.boolean("stereo_cross_check", c.stereo_cross_check, "Keep a stereo match only if the left key's best right key is the same key (mutual best; removes false matches on repetitive texture).");
-  v.integer_field("index_capacity", c.index_capacity, {16, 10000000, "", "Descriptors the index holds (landmarks and candidates)."});
+  v.integer_field("index_capacity", c.index_capacity, {16, 10000000, "", "Descriptors the index holds (landmarks and candidates): a 25-minute exploration of the simulated lab needs about 200 000 (docs/results.md)."});
   v.integer_field("candidate_min_frames", c.candidate_min_frames, {1, 100, "frames", "A new key becomes a landmark after being seen in this many frames."});
   v.integer_field("index_max_leaf_checks", c.index_max_leaf_checks, {1, 100000, "", "Best-bin-first search: leaves examined per query."});
   v.number("floor_tolerance_m", c.floor_tolerance_m, {0.0, 1.0, "m", "Points higher than this above the floor count as obstacles in the 2.5D scan."});
