@@ -118,8 +118,9 @@ TEST(LogRoundTrip, EveryRecordTypeComesBackUnchanged) {
     EXPECT_TRUE(writer.write_odometry(odometry(3)));
     EXPECT_TRUE(writer.write_gpio_event(200, {GpioEvent::emergency_stop, true}));
     EXPECT_TRUE(writer.write_drive_command(300, {0.12, -0.1}));
+    EXPECT_TRUE(writer.write_ground_truth(350, core::Pose2{1.5, -2.0, 0.25}));
     writer.close(400);
-    EXPECT_EQ(writer.stats().records_written, 7u);
+    EXPECT_EQ(writer.stats().records_written, 8u);
     EXPECT_EQ(writer.stats().records_dropped, 0u);
   }
   LogReader reader;
@@ -170,9 +171,18 @@ TEST(LogRoundTrip, EveryRecordTypeComesBackUnchanged) {
       case RecordType::end_of_run: {
         EndOfRun end;
         ASSERT_TRUE(decode_end_of_run(record.payload, record.size, end));
-        EXPECT_EQ(end.records_written, 6u);
+        EXPECT_EQ(end.records_written, 7u);
         EXPECT_EQ(end.records_dropped, 0u);
         EXPECT_EQ(record.timestamp_ns, 400);
+        break;
+      }
+      case RecordType::ground_truth: {
+        core::Pose2 pose;
+        ASSERT_TRUE(decode_ground_truth(record.payload, record.size, pose));
+        EXPECT_EQ(pose.x, 1.5);
+        EXPECT_EQ(pose.y, -2.0);
+        EXPECT_EQ(pose.theta, 0.25);
+        EXPECT_EQ(record.timestamp_ns, 350);
         break;
       }
       case RecordType::odometry:
@@ -181,7 +191,7 @@ TEST(LogRoundTrip, EveryRecordTypeComesBackUnchanged) {
   }
   EXPECT_EQ(types, (std::vector<RecordType>{RecordType::run_info, RecordType::config, RecordType::stereo_frame,
                                             RecordType::odometry, RecordType::gpio_event, RecordType::drive_command,
-                                            RecordType::end_of_run}));
+                                            RecordType::ground_truth, RecordType::end_of_run}));
   EXPECT_EQ(reader.stats().damaged, 0u);
   EXPECT_EQ(reader.stats().truncated_bytes, 0u);
 }
