@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "stereoscout/test/command.hpp"
+#include "stereoscout/test/paths.hpp"
 
 namespace stereoscout {
 namespace {
@@ -26,6 +27,15 @@ TEST(RunCommand, WithoutTheRobotNamesTheMissingDeviceAndFails) {
 TEST(RunCommand, RefusesTheSimulatorsGroundTruth) {
   const test::CommandResult result = test::run_stereoscout("run --localization groundtruth --out /tmp/stereoscout_run_test_out");
   EXPECT_EQ(result.exit_code, 2) << result.output;
+}
+
+// Every target's budget profile is a valid config file (check-budgets loads it as one).
+TEST(BudgetProfiles, LoadAsConfigFiles) {
+  for (const char* target : {"host-x86_64", "robot-aarch64"}) {
+    const std::string path = test::source_path(std::string("config/budgets/") + target + ".yaml");
+    const test::CommandResult result = test::run_stereoscout("config --config " + path);
+    EXPECT_EQ(result.exit_code, 0) << path << "\n" << result.output;
+  }
 }
 
 }  // namespace

@@ -15,7 +15,7 @@ struct FilterConfig {
   double motion_noise_rotation_per_m = 0.02;
   double motion_noise_translation_per_rad = 0.01;
   int landmark_node_capacity = 4000000;
-  int landmark_estimate_capacity = 2000000;
+  int landmark_estimate_capacity = 4000000;
   int trajectory_node_capacity = 1000000;
   int estimates_per_landmark = 4;
   int max_observations_per_update = 1000;
