@@ -18,26 +18,14 @@
 #include <gtest/gtest.h>
 
 #include "stereoscout/test/command.hpp"
+#include "stereoscout/test/small_world.hpp"
 
 namespace stereoscout {
 namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* kWorld = R"(
-name: two_rooms
-seed: 5
-ceiling_height: 2.6
-start: [1.2, 1.2, 20]
-floor: {type: tile, texture: tile, brightness: 0.5, contrast: 0.5}
-ceiling: {texture: low, brightness: 0.8, contrast: 0.2}
-walls:
-  - {points: [[0, 0], [7, 0], [7, 5], [0, 5], [0, 0]], texture: brick, brightness: 0.5, contrast: 0.7}
-  - {points: [[4, 0], [4, 1.6]], texture: wood, brightness: 0.5, contrast: 0.7}
-  - {points: [[4, 2.8], [4, 5]], texture: wood, brightness: 0.5, contrast: 0.7}
-boxes:
-  - {center: [2.2, 3.6], size: [0.8, 0.6], z: [0, 0.15], texture: wood, brightness: 0.5, contrast: 0.7}
-)";
+constexpr const char* kWorld = test::kTwoRoomsWorld;
 
 // A small camera and map so that a run of a few simulated seconds takes seconds.
 std::string config_text(const std::string& world_path) {
