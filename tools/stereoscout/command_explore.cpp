@@ -92,12 +92,13 @@ int run_explore(int argc, char** argv) {
     return 1;
   }
   const CoverageProbe probe(setup.config, setup.world);
+  RunContext context;
   LoopHooks hooks;
   hooks.coverage = [&] { return probe.coverage(stack.grid_view()); };
+  hooks.sample = [&](double time_s) { context.coverage_curve.emplace_back(time_s, probe.coverage(stack.grid_view())); };
   run_to_end(stack, hooks);
   stack.finish();
 
-  RunContext context;
   context.command = "explore";
   context.world_name = setup.world.name;
   context.world = &setup.world;

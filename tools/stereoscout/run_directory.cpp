@@ -1,5 +1,6 @@
 #include "run_directory.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -224,6 +225,22 @@ void write_counters(report::JsonWriter& json, const stack::Stack& stack) {
       .end_object();
 }
 
+// The first sampled time the navigation grid covered 90% / 95% (null: never), and the curve.
+void write_coverage_curve(report::JsonWriter& json, const std::vector<std::pair<double, double>>& curve) {
+  if (curve.empty()) return;
+  for (const auto& [level, key] : {std::pair<double, const char*>{0.90, "time_to_90_s"}, {0.95, "time_to_95_s"}}) {
+    const auto reached = std::find_if(curve.begin(), curve.end(), [l = level](const auto& s) { return s.second >= l; });
+    if (reached == curve.end()) {
+      json.null(key);
+    } else {
+      json.number(key, reached->first);
+    }
+  }
+  json.begin_array("coverage_curve");
+  for (const auto& [time_s, coverage] : curve) json.begin_array().number(nullptr, time_s).number(nullptr, coverage).end_array();
+  json.end_array();
+}
+
 void optional_number(report::JsonWriter& json, const char* key, double value) {
   if (value < 0.0) {
     json.null(key);
@@ -262,6 +279,7 @@ std::string report_json(const stack::Stack& stack, const core::SystemConfig& con
       .number("wall_time_s", context.wall_time_s)
       .number("distance_m", context.distance_m);
   for (const auto& [key, value] : context.extra_numbers) json.number(key.c_str(), value);
+  write_coverage_curve(json, context.coverage_curve);
   write_timing(json, stack.scheduler());
   write_pools(json, stack, config);
   json.unsigned_integer("heap_allocations_in_loop", stack.counters().heap_allocations_in_loop);

@@ -27,6 +27,7 @@ struct RunContext {
   double wall_time_s = 0.0;
   std::string log_file;                        // file name inside the run directory, or empty
   std::vector<std::pair<std::string, double>> extra_numbers;   // e.g. replay damage counts
+  std::vector<std::pair<double, double>> coverage_curve;       // (time s, coverage) samples
 };
 
 struct RunScore {

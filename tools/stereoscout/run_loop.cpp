@@ -26,8 +26,13 @@ void run_to_end(stack::Stack& stack, const LoopHooks& hooks) {
   const bool on_terminal = hooks.progress && ::isatty(STDERR_FILENO) == 1;
   const auto wall_start = std::chrono::steady_clock::now();
   double next_progress_s = 0.0;
+  double next_sample_s = 0.0;
   while (stack.tick()) {
     if (hooks.should_stop && hooks.should_stop()) stack.request_stop();
+    if (hooks.sample && stack.time_s() >= next_sample_s) {
+      hooks.sample(stack.time_s());
+      next_sample_s += hooks.sample_period_s;
+    }
     if (!on_terminal) continue;
     const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     if (wall_s >= next_progress_s) {
@@ -35,6 +40,7 @@ void run_to_end(stack::Stack& stack, const LoopHooks& hooks) {
       next_progress_s = wall_s + kProgressPeriodS;
     }
   }
+  if (hooks.sample) hooks.sample(stack.time_s());
   if (on_terminal) std::fprintf(stderr, "\n");
 }
 
