@@ -1,6 +1,7 @@
 #include "stereoscout/stack/stack.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <utility>
 
 #include "stereoscout/core/allocation_counter.hpp"
@@ -103,7 +104,7 @@ Stack::Stack(const core::SystemConfig& config, const StackOptions& options, cons
 
 Stack::~Stack() {
   finish();
-  grid_.reset();  // releases its trajectory nodes before the filter's tree goes
+  grid_.reset();  // releases its trajectory nodes while the filter's tree exists (also the member order)
 }
 
 bool Stack::start(double start_timeout_s, std::string& error) {
@@ -117,7 +118,9 @@ bool Stack::start(double start_timeout_s, std::string& error) {
   const auto deadline_ns = start_ns_ + static_cast<std::int64_t>(start_timeout_s * 1e9);
   while (!read_odometry_into_history()) {
     if (board_.clock->now_ns() >= deadline_ns) {
-      error = "no odometry reading within " + std::to_string(start_timeout_s) + " s of start";
+      char text[96];
+      std::snprintf(text, sizeof text, "no odometry reading within %.1f s of start", start_timeout_s);
+      error = text;
       return false;
     }
     board_.clock->sleep_until(board_.clock->now_ns() + kStartPollNs);
