@@ -100,16 +100,22 @@ void score_map(const stack::Stack& stack, const core::SystemConfig& config, cons
   score.map_agreement = evaluation.accuracy();
 }
 
+// groundtruth.tum is written when every update knows its true pose (simulated runs).
+bool every_update_has_truth(const stack::Stack& stack) {
+  const auto& records = stack.update_records();
+  return !records.empty() &&
+         std::all_of(records.begin(), records.end(), [](const stack::UpdateRecord& r) { return r.has_ground_truth; });
+}
+
 std::string write_trajectories(const stack::Stack& stack, const std::string& out, std::string& error) {
   std::ostringstream trajectory;
   slam::write_tum_trajectory(trajectory, stack.filter().trajectory(), stack.filter().ml_trajectory_node());
   std::ostringstream odometry;
   std::ostringstream truth;
-  bool has_truth = !stack.update_records().empty();
+  const bool has_truth = every_update_has_truth(stack);
   for (const stack::UpdateRecord& record : stack.update_records()) {
     tum_line(odometry, record.timestamp_ns, record.odometry);
-    if (record.has_ground_truth) tum_line(truth, record.timestamp_ns, record.ground_truth);
-    has_truth = has_truth && record.has_ground_truth;
+    if (has_truth) tum_line(truth, record.timestamp_ns, record.ground_truth);
   }
   if (!write_text(out + "/trajectory.tum", trajectory.str(), error)) return error;
   if (!write_text(out + "/odometry.tum", odometry.str(), error)) return error;
@@ -320,7 +326,7 @@ std::string write_run_directory(const stack::Stack& stack, const core::SystemCon
   score_map(stack, config, context, score);
   std::map<std::string, std::string> digests;
   std::vector<std::string> files = {"map.pgm", "map.yaml", "map.png", "trajectory.tum", "odometry.tum", "landmarks.ply"};
-  if (!stack.update_records().empty() && stack.update_records()[0].has_ground_truth) files.push_back("groundtruth.tum");
+  if (every_update_has_truth(stack)) files.push_back("groundtruth.tum");
   if (!context.log_file.empty()) files.push_back(context.log_file);
   for (const std::string& file : files) digests[file] = sha256_of_file(out + "/" + file);
   write_text(out + "/report.json", report_json(stack, config, context, score, digests), error);
