@@ -9,43 +9,14 @@
 #include "commands.hpp"
 #include "run_directory.hpp"
 #include "run_loop.hpp"
+#include "reachable_coverage.hpp"
 #include "run_setup.hpp"
-#include "stereoscout/host_sim/ground_truth.hpp"
 #include "stereoscout/report/wall_stopwatch.hpp"
 
 namespace stereoscout::cli {
 namespace {
 
 constexpr const char* kName = "stereoscout explore";
-
-// Coverage for the progress line: reachable free cells the stack's grid holds as free.
-class CoverageProbe {
- public:
-  CoverageProbe(const core::SystemConfig& config, const host_sim::World& world) {
-    const host_sim::GroundTruthGrid truth = host_sim::rasterize_world(
-        world, config.grid.resolution_m, config.sim.floor_tolerance_m, config.robot.height_m);
-    const host_sim::GroundTruthGrid reachable =
-        host_sim::reachable_free_space(truth, world.start.translation(), config.robot.radius_m);
-    for (int y = 0; y < reachable.height; ++y) {
-      for (int x = 0; x < reachable.width; ++x) {
-        if (reachable.at(x, y) == host_sim::GroundTruthGrid::free) centres_.push_back(reachable.cell_center(x, y));
-      }
-    }
-  }
-
-  double coverage(const explore::GridView& grid) const {
-    if (centres_.empty()) return 0.0;
-    std::size_t free = 0;
-    for (const Eigen::Vector2d& centre : centres_) {
-      const Eigen::Vector2i cell = grid.cell_of(centre);
-      if (grid.contains(cell.x(), cell.y()) && grid.at(cell.x(), cell.y()) == explore::CellState::free) ++free;
-    }
-    return static_cast<double>(free) / static_cast<double>(centres_.size());
-  }
-
- private:
-  std::vector<Eigen::Vector2d> centres_;
-};
 
 void declare(Arguments& arguments) {
   arguments.option("config", "FILE", "config file", default_config_path());
@@ -91,7 +62,7 @@ int run_explore(int argc, char** argv) {
     std::fprintf(stderr, "%s: %s\n", kName, error.c_str());
     return 1;
   }
-  const CoverageProbe probe(setup.config, setup.world);
+  const ReachableCoverage probe(setup.config, setup.world);
   RunContext context;
   LoopHooks hooks;
   hooks.coverage = [&] { return probe.coverage(stack.grid_view()); };

@@ -1,4 +1,5 @@
 #include "explore_gt_run.hpp"
+#include "reachable_coverage.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -10,6 +11,8 @@
 #include "stereoscout/host_sim/renderer.hpp"
 #include "stereoscout/host_sim/simulator.hpp"
 #include "stereoscout/occupancy/occupancy_grid.hpp"
+#include "stereoscout/occupancy/ros_map.hpp"
+#include "stereoscout/stack/stack.hpp"
 #include "stereoscout/vision/calibration.hpp"
 #include "stereoscout/vision/obstacle_scan.hpp"
 
@@ -36,63 +39,12 @@ void disparity_from_depth(const cv::Mat& depth_right, double focal_baseline, cv:
   }
 }
 
-struct GroundTruthCoverage {
-  host_sim::GroundTruthGrid reachable;
-  std::size_t reachable_cells = 0;
-
-  GroundTruthCoverage(const core::SystemConfig& config, const host_sim::World& world) {
-    const host_sim::GroundTruthGrid occupancy = host_sim::rasterize_world(
-        world, config.grid.resolution_m, config.sim.floor_tolerance_m, config.robot.height_m);
-    reachable = host_sim::reachable_free_space(occupancy, world.start.translation(), config.robot.radius_m);
-    reachable_cells = reachable.count(host_sim::GroundTruthGrid::free);
-  }
-
-  std::size_t covered(const explore::GridView& grid) const {
-    std::size_t count = 0;
-    for (int y = 0; y < reachable.height; ++y) {
-      for (int x = 0; x < reachable.width; ++x) {
-        if (reachable.at(x, y) != host_sim::GroundTruthGrid::free) continue;
-        const Eigen::Vector2i cell = grid.cell_of(reachable.cell_center(x, y));
-        if (grid.contains(cell.x(), cell.y()) && grid.at(cell.x(), cell.y()) == explore::CellState::free) ++count;
-      }
-    }
-    return count;
-  }
-};
-
-// The ROS thresholds on p = 1 - 1 / (1 + e^l), compared in log-odds (no exp per cell).
-void classify_grid(const occupancy::OccupancyGrid& grid, const occupancy::CellThresholds& thresholds,
-                   std::vector<std::uint8_t>& cells) {
-  const auto occupied_above = static_cast<float>(std::log(thresholds.occupied / (1.0 - thresholds.occupied)));
-  const auto free_below = static_cast<float>(std::log(thresholds.free / (1.0 - thresholds.free)));
-  const float* log_odds = grid.data();
-  for (std::size_t i = 0; i < cells.size(); ++i) {
-    const float l = log_odds[i];
-    cells[i] = static_cast<std::uint8_t>(l > occupied_above ? explore::CellState::occupied
-                                         : l < free_below   ? explore::CellState::free
-                                                            : explore::CellState::unknown);
-  }
-}
-
-std::string write_grid(const explore::GridView& grid, const std::string& pgm_path) {
-  host_sim::GroundTruthGrid map;
-  map.origin = grid.origin_m;
-  map.resolution_m = grid.resolution_m;
-  map.width = grid.width;
-  map.height = grid.height;
-  map.cells.resize(static_cast<std::size_t>(grid.width) * static_cast<std::size_t>(grid.height));
-  for (std::size_t i = 0; i < map.cells.size(); ++i) {
-    const auto state = static_cast<explore::CellState>(grid.cells[i]);
-    map.cells[i] = state == explore::CellState::free       ? host_sim::GroundTruthGrid::free
-                   : state == explore::CellState::occupied ? host_sim::GroundTruthGrid::occupied
-                                                           : host_sim::GroundTruthGrid::unknown;
-  }
-  std::string error = host_sim::write_map_pgm(map, pgm_path);
-  if (!error.empty()) return error;
+// The final grid as a ROS map: <stem>.pgm and <stem>.yaml.
+std::string write_grid(const occupancy::OccupancyGrid& grid, const occupancy::CellThresholds& thresholds,
+                       const std::string& pgm_path) {
   const std::size_t dot = pgm_path.rfind('.');
   const std::string stem = dot == std::string::npos ? pgm_path : pgm_path.substr(0, dot);
-  const std::size_t slash = pgm_path.rfind('/');
-  return host_sim::write_map_yaml(map, stem + ".yaml", slash == std::string::npos ? pgm_path : pgm_path.substr(slash + 1));
+  return occupancy::write_ros_map(occupancy::classify_grid(grid, thresholds), pgm_path, stem + ".yaml");
 }
 
 }  // namespace
@@ -124,20 +76,15 @@ ExploreGtResult run_explore_gt(const core::SystemConfig& config, const host_sim:
   const occupancy::GridGeometry geometry = occupancy::GridGeometry::centred_on(config.grid, world.start);
   occupancy::OccupancyGrid grid(geometry, occupancy::LogOddsModel::from_config(config.grid));
   const occupancy::CellThresholds thresholds = occupancy::CellThresholds::from_config(config.grid);
-  std::vector<std::uint8_t> cells(geometry.cell_count(), static_cast<std::uint8_t>(explore::CellState::unknown));
-  explore::GridView view;
-  view.width = geometry.width_cells;
-  view.height = geometry.height_cells;
-  view.resolution_m = geometry.resolution_m;
-  view.origin_m = Eigen::Vector2d(geometry.origin_x_m, geometry.origin_y_m);
-  view.cells = cells.data();
+  std::vector<occupancy::CellState> cells(geometry.cell_count(), occupancy::CellState::unknown);
+  const explore::GridView view = stack::navigation_view(geometry, cells.data());
 
   core::ExploreConfig explore_config = config.explore;
   explore_config.time_limit_s = std::min(explore_config.time_limit_s, config.run.max_time_s);
   explore::Explorer explorer(explore::ExploreParams::from_config(explore_config, config.robot, config.camera,
                                                                  geometry.width_cells, geometry.height_cells));
-  const GroundTruthCoverage truth(config, world);
-  result.reachable_cells = truth.reachable_cells;
+  const ReachableCoverage truth(config, world);
+  result.reachable_cells = truth.reachable_cells();
 
   const double min_translation = config.robot.update_min_translation_m;
   const double min_rotation = core::degrees_to_radians(config.robot.update_min_rotation_deg);
@@ -158,7 +105,7 @@ ExploreGtResult run_explore_gt(const core::SystemConfig& config, const host_sim:
       disparity_from_depth(depth, focal_baseline, disparity);
       scanner.compute(disparity, simulator.pan_rad(), simulator.time_ns(), scan);
       grid.insert(scan, pose);
-      classify_grid(grid, thresholds, cells);
+      occupancy::classify_cells(grid, thresholds, cells.data());
       last_update_pose = pose;
       last_update_camera_heading = camera_heading;
       first = false;
@@ -166,7 +113,7 @@ ExploreGtResult run_explore_gt(const core::SystemConfig& config, const host_sim:
     }
     if (simulator.time_s() >= next_sample_s) {
       result.coverage_curve.push_back(
-          {simulator.time_s(), static_cast<double>(truth.covered(view)) / static_cast<double>(truth.reachable_cells)});
+          {simulator.time_s(), truth.coverage(view)});
       next_sample_s += options.coverage_sample_period_s;
     }
     explore::ExploreInput input;
@@ -195,10 +142,8 @@ ExploreGtResult run_explore_gt(const core::SystemConfig& config, const host_sim:
   }
   if (!exploration_over) result.exploration_time_s = simulator.time_s();
   result.total_time_s = simulator.time_s();
-  result.covered_cells = truth.covered(view);
-  result.coverage = truth.reachable_cells == 0 ? 0.0
-                                               : static_cast<double>(result.covered_cells) /
-                                                     static_cast<double>(truth.reachable_cells);
+  result.covered_cells = truth.covered_cells(view);
+  result.coverage = truth.coverage(view);
   result.coverage_curve.push_back({simulator.time_s(), result.coverage});
   result.collisions = simulator.collision_count();
   result.person_contacts = simulator.person_contact_count();
@@ -207,7 +152,7 @@ ExploreGtResult run_explore_gt(const core::SystemConfig& config, const host_sim:
   result.counters = explorer.counters();
   result.finish_reason = explorer.finish_reason();
   result.final_state = explorer.state();
-  if (!options.map_pgm.empty()) result.error = write_grid(view, options.map_pgm);
+  if (!options.map_pgm.empty()) result.error = write_grid(grid, thresholds, options.map_pgm);
   return result;
 }
 

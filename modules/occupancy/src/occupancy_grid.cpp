@@ -41,11 +41,28 @@ CellThresholds CellThresholds::from_config(const core::GridConfig& config) {
   return {config.occupied_threshold, config.free_threshold};
 }
 
-CellState CellThresholds::classify(float log_odds) const {
-  const double probability = 1.0 - 1.0 / (1.0 + std::exp(static_cast<double>(log_odds)));
-  if (probability > occupied) return CellState::occupied;
-  if (probability < free) return CellState::free;
+namespace {
+
+float logit(double probability) { return static_cast<float>(std::log(probability / (1.0 - probability))); }
+
+CellState classify_log_odds(float log_odds, float occupied_above, float free_below) {
+  if (log_odds > occupied_above) return CellState::occupied;
+  if (log_odds < free_below) return CellState::free;
   return CellState::unknown;
+}
+
+}  // namespace
+
+CellState CellThresholds::classify(float log_odds) const {
+  return classify_log_odds(log_odds, logit(occupied), logit(free));
+}
+
+void classify_cells(const OccupancyGrid& grid, const CellThresholds& thresholds, CellState* cells) {
+  const float occupied_above = logit(thresholds.occupied);
+  const float free_below = logit(thresholds.free);
+  const float* log_odds = grid.data();
+  const std::size_t count = grid.geometry().cell_count();
+  for (std::size_t i = 0; i < count; ++i) cells[i] = classify_log_odds(log_odds[i], occupied_above, free_below);
 }
 
 OccupancyGrid::OccupancyGrid(const GridGeometry& geometry, const LogOddsModel& model)

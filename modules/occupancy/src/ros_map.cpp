@@ -93,7 +93,7 @@ RosMap classify_grid(const OccupancyGrid& grid, const CellThresholds& thresholds
   map.occupied_thresh = thresholds.occupied;
   map.free_thresh = thresholds.free;
   map.cells.resize(map.geometry.cell_count());
-  for (std::size_t i = 0; i < map.cells.size(); ++i) map.cells[i] = thresholds.classify(grid.data()[i]);
+  classify_cells(grid, thresholds, map.cells.data());
   return map;
 }
 

@@ -42,6 +42,20 @@ std::size_t records_for(double max_time_s, double rate_hz) {
 
 }  // namespace
 
+explore::GridView navigation_view(const occupancy::GridGeometry& geometry, const occupancy::CellState* cells) {
+  static_assert(sizeof(occupancy::CellState) == 1);
+  static_assert(static_cast<int>(occupancy::CellState::unknown) == static_cast<int>(explore::CellState::unknown) &&
+                static_cast<int>(occupancy::CellState::free) == static_cast<int>(explore::CellState::free) &&
+                static_cast<int>(occupancy::CellState::occupied) == static_cast<int>(explore::CellState::occupied));
+  explore::GridView view;
+  view.width = geometry.width_cells;
+  view.height = geometry.height_cells;
+  view.resolution_m = geometry.resolution_m;
+  view.origin_m = Eigen::Vector2d(geometry.origin_x_m, geometry.origin_y_m);
+  view.cells = reinterpret_cast<const std::uint8_t*>(cells);  // unsigned char may alias any object
+  return view;
+}
+
 bool parse_localization(const std::string& text, Localization& localization) {
   if (text == "rbpf") localization = Localization::rbpf;
   else if (text == "groundtruth") localization = Localization::groundtruth;
@@ -82,7 +96,8 @@ Stack::Stack(const core::SystemConfig& config, const StackOptions& options, cons
       odometry_history_(kOdometryHistory),
       update_records_(records_for(options.max_time_s, config.budgets.tasks[3].rate_hz)),
       odometry_path_(records_for(options.max_time_s, config.robot.odometry_rate_hz)),
-      staged_(kStagedRecords) {
+      staged_(kStagedRecords),
+      thresholds_(occupancy::CellThresholds::from_config(config.grid)) {
   const core::CameraMount mount = slam::camera_mount_from_config(config.camera);
   vision_ = std::make_unique<vision::VisionFrontEnd>(config.vision, config.robot,
                                                      vision::calibration_from_config(config.camera), mount);
@@ -96,10 +111,7 @@ Stack::Stack(const core::SystemConfig& config, const StackOptions& options, cons
   explorer_ = std::make_unique<explore::Explorer>(explore::ExploreParams::from_config(
       explore, config.robot, config.camera, config.grid.width_cells, config.grid.height_cells));
   cells_.assign(static_cast<std::size_t>(config.grid.width_cells) * static_cast<std::size_t>(config.grid.height_cells),
-                static_cast<std::uint8_t>(explore::CellState::unknown));
-  const occupancy::CellThresholds thresholds = occupancy::CellThresholds::from_config(config.grid);
-  occupied_above_ = static_cast<float>(std::log(thresholds.occupied / (1.0 - thresholds.occupied)));
-  free_below_ = static_cast<float>(std::log(thresholds.free / (1.0 - thresholds.free)));
+                occupancy::CellState::unknown);
 }
 
 Stack::~Stack() {
@@ -132,11 +144,7 @@ bool Stack::start(double start_timeout_s, std::string& error) {
   grid_ = std::make_unique<occupancy::JustInTimeGrid>(config_.grid, geometry,
                                                       static_cast<std::size_t>(config_.camera.width_px),
                                                       filter_->trajectory());
-  view_.width = geometry.width_cells;
-  view_.height = geometry.height_cells;
-  view_.resolution_m = geometry.resolution_m;
-  view_.origin_m = Eigen::Vector2d(geometry.origin_x_m, geometry.origin_y_m);
-  view_.cells = cells_.data();
+  view_ = navigation_view(geometry, cells_.data());
   pose_at_update_ = filter_->ml_pose();
   odometry_at_update_ = first.pose;
   rollup_due_ = true;  // the root gets a grid, so every lineage has one above it
@@ -367,23 +375,10 @@ core::Status Stack::grid_rollup() {
   live_nodes_.clear();
   for (std::size_t i = 0; i < filter_->particle_count(); ++i) live_nodes_.push_back(filter_->particle(i).trajectory);
   grid_->update(filter_->ml_trajectory_node(), live_nodes_.data(), live_nodes_.size());
-  classify_grid();
+  if (const occupancy::OccupancyGrid* grid = grid_->ml_grid()) occupancy::classify_cells(*grid, thresholds_, cells_.data());
   grid_changed_ = true;
   ++counters_.rollups;
   return core::Status::success();
-}
-
-// The ROS thresholds on p = 1 - 1 / (1 + e^l), compared in log-odds (no exp per cell).
-void Stack::classify_grid() {
-  const occupancy::OccupancyGrid* grid = grid_->ml_grid();
-  if (grid == nullptr) return;
-  const float* log_odds = grid->data();
-  for (std::size_t i = 0; i < cells_.size(); ++i) {
-    const float l = log_odds[i];
-    cells_[i] = static_cast<std::uint8_t>(l > occupied_above_ ? explore::CellState::occupied
-                                          : l < free_below_   ? explore::CellState::free
-                                                              : explore::CellState::unknown);
-  }
 }
 
 core::Status Stack::replan() {

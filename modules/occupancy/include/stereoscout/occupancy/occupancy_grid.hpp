@@ -65,12 +65,19 @@ struct LogOddsModel {
 enum class CellState : std::uint8_t { unknown, free, occupied };
 
 // Probability thresholds of the ROS map_server convention, applied to p = 1 - 1/(1 + e^l).
+// Compared in log-odds (l > logit(occupied), l < logit(free)): the same test without an exp
+// per cell, and the one test every user of a grid (explorer, final map, scores) applies.
 struct CellThresholds {
   double occupied = 0.65;
   double free = 0.196;
   static CellThresholds from_config(const core::GridConfig& config);
   CellState classify(float log_odds) const;
 };
+
+class OccupancyGrid;
+// Classifies every cell of `grid` into `cells` (grid.geometry().cell_count() entries, row-major
+// like the grid). No allocation: the tick loop calls it after each roll-up.
+void classify_cells(const OccupancyGrid& grid, const CellThresholds& thresholds, CellState* cells);
 
 // One valid column of a scan, compact (robot frame at capture time): 12 bytes, so the ring of
 // 4096 scans x 640 columns stays at 31 MB.

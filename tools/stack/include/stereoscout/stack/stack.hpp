@@ -64,6 +64,10 @@ struct Board {
   log::LogWriter* log = nullptr;              // optional: record the sensor log
 };
 
+// The explorer's view of classified grid cells: the occupancy module's CellState codes read
+// as the explorer's bytes (the two enums have the same values, checked at compile time).
+explore::GridView navigation_view(const occupancy::GridGeometry& geometry, const occupancy::CellState* cells);
+
 enum class Localization : std::uint8_t { rbpf, groundtruth, odometry };
 bool parse_localization(const std::string& text, Localization& localization);
 const char* to_string(Localization localization);
@@ -181,7 +185,6 @@ class Stack {
   bool read_odometry_into_history();
   bool camera_moved(const core::StereoFrame& frame) const;
   bool stage(const StagedRecord& record);
-  void classify_grid();
   void check_end();
 
   core::SystemConfig config_;
@@ -199,10 +202,8 @@ class Stack {
   core::FixedVector<core::LandmarkObservation> observations_;
   core::FixedVector<slam::TrajectoryNodeHandle> live_nodes_;
   core::DepthScan scan_;
-  std::vector<std::uint8_t> cells_;
+  std::vector<occupancy::CellState> cells_;  // the ML grid classified, the explorer's view
   explore::GridView view_;
-  float occupied_above_ = 0.0F;  // log-odds of grid.occupied_threshold
-  float free_below_ = 0.0F;      // log-odds of grid.free_threshold
 
   // Sensors.
   core::StereoFrame capture_frame_;
@@ -233,6 +234,7 @@ class Stack {
   core::DriveCommand last_command_;
 
   core::RingBuffer<StagedRecord> staged_;
+  occupancy::CellThresholds thresholds_;
   StackCounters counters_;
   std::int64_t start_ns_ = 0;
   StopReason stop_reason_ = StopReason::running;
