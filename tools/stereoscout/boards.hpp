@@ -14,18 +14,11 @@
 
 namespace stereoscout::cli {
 
-// The simulator has no GPIO lines: the e-stop is never pressed; motor enable is remembered.
+// The simulator has no GPIO lines: the e-stop is never pressed, motor enable goes nowhere.
 class SimGpio final : public platform::Gpio {
  public:
   bool emergency_stop_active() override { return false; }
-  core::Status set_motor_enable(bool enabled) override {
-    motor_enabled_ = enabled;
-    return core::Status::success();
-  }
-  bool motor_enabled() const { return motor_enabled_; }
-
- private:
-  bool motor_enabled_ = false;
+  core::Status set_motor_enable(bool) override { return core::Status::success(); }
 };
 
 // A replay drives nothing: the log already holds the motion the live commands caused.

@@ -55,10 +55,8 @@ int run_explore(int argc, char** argv) {
   }
   SimBoard board(setup.config, setup.world);
   report::WallStopwatch stopwatch;
-  core::StreamSink sink(stderr);
-  core::Logger logger(sink);
-  stack::Stack stack(setup.config, setup.options, board.board(record ? &writer : nullptr), stopwatch, logger);
-  if (!stack.start(5.0, error)) {
+  stack::Stack stack(setup.config, setup.options, board.board(record ? &writer : nullptr), stopwatch);
+  if (!stack.start(kStartTimeoutS, error)) {
     std::fprintf(stderr, "%s: %s\n", kName, error.c_str());
     return 1;
   }

@@ -92,10 +92,8 @@ int run_replay(int argc, char** argv) {
   std::filesystem::create_directories(out, ignored);
 
   report::WallStopwatch stopwatch;
-  core::StreamSink sink(stderr);
-  core::Logger logger(sink);
-  stack::Stack stack(setup.config, setup.options, board.board(), stopwatch, logger);
-  if (!stack.start(5.0, error)) {
+  stack::Stack stack(setup.config, setup.options, board.board(), stopwatch);
+  if (!stack.start(kStartTimeoutS, error)) {
     std::fprintf(stderr, "%s: %s: %s\n", kName, log_path.c_str(), error.c_str());
     return 1;
   }

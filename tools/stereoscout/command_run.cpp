@@ -115,10 +115,8 @@ int run_run(int argc, char** argv) {
   std::signal(SIGINT, request_stop);
   std::signal(SIGTERM, request_stop);
   report::WallStopwatch stopwatch;
-  core::StreamSink sink(stderr);
-  core::Logger logger(sink);
-  stack::Stack stack(setup.config, setup.options, robot.board(record ? &writer : nullptr), stopwatch, logger);
-  if (!stack.start(5.0, error)) {
+  stack::Stack stack(setup.config, setup.options, robot.board(record ? &writer : nullptr), stopwatch);
+  if (!stack.start(kStartTimeoutS, error)) {
     std::fprintf(stderr, "%s: %s (base link %s)\n", kName, error.c_str(), setup.config.robot_pc.base_link_device.c_str());
     return 1;
   }

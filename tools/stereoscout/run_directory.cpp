@@ -26,13 +26,6 @@ bool write_text(const std::string& path, const std::string& text, std::string& e
   return file.good();
 }
 
-void tum_line(std::ostream& out, std::int64_t timestamp_ns, const core::Pose2& pose) {
-  char line[160];
-  std::snprintf(line, sizeof line, "%.9f %.6f %.6f 0 0 0 %.9f %.9f\n", static_cast<double>(timestamp_ns) * 1e-9, pose.x,
-                pose.y, std::sin(pose.theta / 2.0), std::cos(pose.theta / 2.0));
-  out << line;
-}
-
 // The ML particle's trajectory, root first: update index -> pose.
 std::map<std::uint32_t, core::Pose2> ml_trajectory(const slam::ParticleFilter& filter) {
   std::map<std::uint32_t, core::Pose2> poses;
@@ -114,8 +107,8 @@ std::string write_trajectories(const stack::Stack& stack, const std::string& out
   std::ostringstream truth;
   const bool has_truth = every_update_has_truth(stack);
   for (const stack::UpdateRecord& record : stack.update_records()) {
-    tum_line(odometry, record.timestamp_ns, record.odometry);
-    if (has_truth) tum_line(truth, record.timestamp_ns, record.ground_truth);
+    odometry << slam::tum_line(record.timestamp_ns, record.odometry);
+    if (has_truth) truth << slam::tum_line(record.timestamp_ns, record.ground_truth);
   }
   if (!write_text(out + "/trajectory.tum", trajectory.str(), error)) return error;
   if (!write_text(out + "/odometry.tum", odometry.str(), error)) return error;
@@ -201,6 +194,8 @@ void write_counters(report::JsonWriter& json, const stack::Stack& stack) {
       .unsigned_integer("updates_refused", c.updates_refused)
       .unsigned_integer("vision_failures", c.vision_failures)
       .unsigned_integer("rollups", c.rollups)
+      .unsigned_integer("replan_steps", c.replans)
+      .unsigned_integer("drive_commands", c.drive_commands)
       .unsigned_integer("emergency_stop_ticks", c.emergency_stop_ticks)
       .unsigned_integer("log_records_staged", c.log_records_staged)
       .unsigned_integer("log_stage_overflow", c.log_stage_overflow)

@@ -23,7 +23,7 @@ void show_progress(const stack::Stack& stack, const LoopHooks& hooks, double wal
 }  // namespace
 
 void run_to_end(stack::Stack& stack, const LoopHooks& hooks) {
-  const bool on_terminal = hooks.progress && ::isatty(STDERR_FILENO) == 1;
+  const bool on_terminal = ::isatty(STDERR_FILENO) == 1;
   const auto wall_start = std::chrono::steady_clock::now();
   double next_progress_s = 0.0;
   double next_sample_s = 0.0;

@@ -12,7 +12,6 @@ namespace stereoscout::cli {
 struct LoopHooks {
   std::function<double()> coverage;          // fraction 0..1, or empty when unknown
   std::function<bool()> should_stop;         // e.g. a replayed log ran out, Ctrl-C
-  bool progress = true;                      // still only on a terminal
   // Called every `sample_period_s` of the run's clock (and at the end): e.g. the coverage
   // curve of report.json. The clock is virtual in simulation, so the samples are too.
   std::function<void(double time_s)> sample;

@@ -13,6 +13,10 @@
 
 namespace stereoscout::cli {
 
+// How long start-up waits for the first odometry reading before it gives up (a base link
+// that is not talking; the simulator's first reading comes after 0.19 s).
+inline constexpr double kStartTimeoutS = 5.0;
+
 struct RunSetup {
   core::SystemConfig config;
   stack::StackOptions options;

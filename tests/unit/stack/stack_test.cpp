@@ -140,8 +140,8 @@ class NullTime final : public core::TimeSource {
 };
 
 struct StackFixture {
-  explicit StackFixture(const core::SystemConfig& config) : robot(config.camera), logger(sink) {
-    stack = std::make_unique<Stack>(config, StackOptions{}, robot.board(), stopwatch, logger);
+  explicit StackFixture(const core::SystemConfig& config) : robot(config.camera) {
+    stack = std::make_unique<Stack>(config, StackOptions{}, robot.board(), stopwatch);
   }
   void run_until(std::int64_t t_ns) {
     while (robot.now_ns() < t_ns && stack->tick()) {
@@ -149,8 +149,6 @@ struct StackFixture {
   }
   ScriptedRobot robot;
   NullTime stopwatch;
-  core::MemorySink sink;
-  core::Logger logger;
   std::unique_ptr<Stack> stack;
 };
 
@@ -199,9 +197,7 @@ TEST(Stack, StopsAtTheTimeLimit) {
   options.max_time_s = 2.0;
   ScriptedRobot robot(config.camera);
   NullTime stopwatch;
-  core::MemorySink sink;
-  core::Logger logger(sink);
-  Stack stack(config, options, robot.board(), stopwatch, logger);
+  Stack stack(config, options, robot.board(), stopwatch);
   std::string error;
   ASSERT_TRUE(stack.start(5.0, error)) << error;
   while (stack.tick()) {

@@ -85,12 +85,11 @@ const char* to_string(StopReason reason) {
 }
 
 Stack::Stack(const core::SystemConfig& config, const StackOptions& options, const Board& board,
-             const core::TimeSource& stopwatch, core::Logger& logger)
+             const core::TimeSource& stopwatch)
     : config_(config),
       options_(options),
       board_(board),
       stopwatch_(stopwatch),
-      logger_(logger),
       observations_(static_cast<std::size_t>(config.vision.max_features)),
       live_nodes_(static_cast<std::size_t>(filter_config_for(config.filter, options.localization).particle_capacity)),
       odometry_history_(kOdometryHistory),
@@ -398,13 +397,13 @@ core::Status Stack::step_explorer(bool grid_updated) {
   input.emergency_stop = emergency_stop_;
   const explore::ExploreOutput output = explorer_->step(input);
   board_.camera->command_pan(output.pan_target_rad);
-  last_command_ = emergency_stop_ ? core::DriveCommand{} : output.drive;
-  const core::Status status = emergency_stop_ ? board_.drive->stop() : board_.drive->command(last_command_);
+  const core::DriveCommand command = emergency_stop_ ? core::DriveCommand{} : output.drive;
+  const core::Status status = emergency_stop_ ? board_.drive->stop() : board_.drive->command(command);
   ++counters_.drive_commands;
   StagedRecord record;
   record.type = log::RecordType::drive_command;
   record.timestamp_ns = now_ns();
-  record.drive = last_command_;
+  record.drive = command;
   stage(record);
   return status;
 }

@@ -3,7 +3,7 @@
 // interfaces. The same object runs in the simulator (host_sim), on a recorded log
 // (host_replay) and on the robot (robot_pc); only the Board differs.
 //
-//   Stack stack(config, options, board, stopwatch, logger);   // allocates everything
+//   Stack stack(config, options, board, stopwatch);           // allocates everything
 //   if (!stack.start(error)) ...                               // waits for the first odometry
 //   while (stack.tick()) {}                                    // one scheduler pass + sleep
 //   stack.finish();                                            // closes the sensor log
@@ -97,8 +97,8 @@ struct StackCounters {
   std::uint64_t updates_refused = 0;        // the filter refused (pool short): motion carried over
   std::uint64_t vision_failures = 0;
   std::uint64_t rollups = 0;
-  std::uint64_t replans = 0;
-  std::uint64_t drive_commands = 0;
+  std::uint64_t replans = 0;              // explorer steps of the replan task
+  std::uint64_t drive_commands = 0;       // commands sent to the drive (both explorer tasks)
   std::uint64_t emergency_stop_ticks = 0;
   std::uint64_t log_records_staged = 0;
   std::uint64_t log_stage_overflow = 0;     // staging queue full: record not logged
@@ -112,14 +112,13 @@ struct StackOptions {
   Localization localization = Localization::rbpf;
   double max_time_s = 3600.0;           // run.max_time_s (or --max-time)
   std::int64_t end_time_ns = -1;        // replay: stop at the live run's last tick
-  bool count_allocations = true;        // heap allocations per tick, for report.json
 };
 
 class Stack {
  public:
   // Allocates every buffer and builds the modules that do not need the start pose.
   Stack(const core::SystemConfig& config, const StackOptions& options, const Board& board,
-        const core::TimeSource& stopwatch, core::Logger& logger);
+        const core::TimeSource& stopwatch);
   ~Stack();
   Stack(const Stack&) = delete;
   Stack& operator=(const Stack&) = delete;
@@ -191,7 +190,6 @@ class Stack {
   StackOptions options_;
   Board board_;
   const core::TimeSource& stopwatch_;
-  core::Logger& logger_;
 
   // Perception and estimation.
   std::unique_ptr<vision::VisionFrontEnd> vision_;
@@ -231,7 +229,6 @@ class Stack {
   bool emergency_stop_logged_ = false;
   bool motor_enabled_ = false;
   bool motor_enable_known_ = false;
-  core::DriveCommand last_command_;
 
   core::RingBuffer<StagedRecord> staged_;
   occupancy::CellThresholds thresholds_;
