@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 
 #include "stereoscout/core/check.hpp"
 
@@ -13,7 +14,7 @@ namespace {
 // A ray whose end cell lies further than this many grid spans from the grid is a broken
 // measurement (or a units bug), not geometry: skipping it bounds the line walk.
 constexpr double kFarLimitInGridSpans = 4.0;
-constexpr float kMaxFloorVisibleMm = 65535.0F;
+constexpr float kMaxDistanceMm = 65535.0F;
 
 }  // namespace
 
@@ -69,7 +70,7 @@ OccupancyGrid::OccupancyGrid(const GridGeometry& geometry, const LogOddsModel& m
     : geometry_(geometry),
       model_(model),
       cells_(new float[geometry.cell_count()]),
-      hit_at_camera_height_(new std::uint8_t[geometry.cell_count()]) {
+      cell_flags_(new std::uint8_t[geometry.cell_count()]) {
   STEREOSCOUT_CHECK(geometry.width_cells > 0 && geometry.height_cells > 0 && geometry.resolution_m > 0.0,
                     "occupancy grid needs a positive size and resolution");
   clear();
@@ -77,21 +78,21 @@ OccupancyGrid::OccupancyGrid(const GridGeometry& geometry, const LogOddsModel& m
 
 void OccupancyGrid::clear() {
   std::fill(cells_.get(), cells_.get() + geometry_.cell_count(), 0.0F);
-  std::fill(hit_at_camera_height_.get(), hit_at_camera_height_.get() + geometry_.cell_count(), std::uint8_t{0});
+  std::fill(cell_flags_.get(), cell_flags_.get() + geometry_.cell_count(), std::uint8_t{0});
   counts_ = {};
 }
 
 void OccupancyGrid::copy_from(const OccupancyGrid& other) {
   STEREOSCOUT_CHECK(geometry_.same_as(other.geometry_), "OccupancyGrid::copy_from needs the same geometry");
   std::memcpy(cells_.get(), other.cells_.get(), geometry_.cell_count() * sizeof(float));
-  std::memcpy(hit_at_camera_height_.get(), other.hit_at_camera_height_.get(), geometry_.cell_count());
+  std::memcpy(cell_flags_.get(), other.cell_flags_.get(), geometry_.cell_count());
   counts_ = other.counts_;
 }
 
 bool OccupancyGrid::same_cells_as(const OccupancyGrid& other) const {
   return geometry_.same_as(other.geometry_) &&
          std::memcmp(cells_.get(), other.cells_.get(), geometry_.cell_count() * sizeof(float)) == 0 &&
-         std::memcmp(hit_at_camera_height_.get(), other.hit_at_camera_height_.get(), geometry_.cell_count()) == 0;
+         std::memcmp(cell_flags_.get(), other.cell_flags_.get(), geometry_.cell_count()) == 0;
 }
 
 bool OccupancyGrid::cell_of(double x_m, double y_m, int& cell_x, int& cell_y) const {
@@ -112,96 +113,123 @@ void OccupancyGrid::add(int cell_x, int cell_y, float delta) {
 void OccupancyGrid::hit(int cell_x, int cell_y, bool at_camera_height) {
   if (!geometry_.contains(cell_x, cell_y)) return;
   add(cell_x, cell_y, model_.hit);
-  hit_at_camera_height_[index(cell_x, cell_y)] = at_camera_height ? 1U : 0U;
+  std::uint8_t& flags = cell_flags_[index(cell_x, cell_y)];
+  flags = static_cast<std::uint8_t>((flags & kHitThisScan) | (at_camera_height ? kLastHitAtCameraHeight : 0U));
 }
 
-// Start and end cells of a ray; false (counted) when an end is not finite or absurdly far.
-bool OccupancyGrid::cells_of(double start_x, double start_y, double end_x, double end_y, int& x0, int& y0, int& x1,
-                             int& y1) {
+// A ray's two ends in cell units (x_m - origin) / resolution; false (counted) when an end is
+// not finite or absurdly far.
+bool OccupancyGrid::grid_coordinates(double start_x, double start_y, double end_x, double end_y, GridSegment& segment) {
   const double span = kFarLimitInGridSpans * (geometry_.width_cells + geometry_.height_cells);
-  const double fx0 = std::floor((start_x - geometry_.origin_x_m) / geometry_.resolution_m);
-  const double fy0 = std::floor((start_y - geometry_.origin_y_m) / geometry_.resolution_m);
-  const double fx1 = std::floor((end_x - geometry_.origin_x_m) / geometry_.resolution_m);
-  const double fy1 = std::floor((end_y - geometry_.origin_y_m) / geometry_.resolution_m);
+  segment = {(start_x - geometry_.origin_x_m) / geometry_.resolution_m,
+             (start_y - geometry_.origin_y_m) / geometry_.resolution_m,
+             (end_x - geometry_.origin_x_m) / geometry_.resolution_m,
+             (end_y - geometry_.origin_y_m) / geometry_.resolution_m};
   // Written so that NaN fails every comparison and is rejected.
-  if (!(std::abs(fx0) < span && std::abs(fy0) < span && std::abs(fx1) < span && std::abs(fy1) < span)) {
+  if (!(std::abs(segment.x0) < span && std::abs(segment.y0) < span && std::abs(segment.x1) < span &&
+        std::abs(segment.y1) < span)) {
     ++counts_.rays_rejected;
     return false;
   }
-  x0 = static_cast<int>(fx0);
-  y0 = static_cast<int>(fy0);
-  x1 = static_cast<int>(fx1);
-  y1 = static_cast<int>(fy1);
   return true;
 }
 
 namespace {
 
-// Integer line walk (Bresenham) from (x, y) to (x1, y1): calls pass(cell) for every cell but
-// the last.
+// Exact cell traversal (Amanatides and Woo): calls pass(cell) for every cell the segment
+// crosses, in order, from its start cell up to but not including its end cell. An integer
+// line walk between the two end cells strays up to half a cell from the true ray, far enough
+// to clear the corner cell of a thin obstacle beside a door the ray went through.
 template <typename Pass>
-void walk_line(int x, int y, int x1, int y1, Pass&& pass) {
-  const int dx = std::abs(x1 - x);
-  const int dy = -std::abs(y1 - y);
-  const int step_x = x < x1 ? 1 : -1;
-  const int step_y = y < y1 ? 1 : -1;
-  int error = dx + dy;
-  while (x != x1 || y != y1) {
+void walk_cells(const GridSegment& segment, Pass&& pass) {
+  int x = static_cast<int>(std::floor(segment.x0));
+  int y = static_cast<int>(std::floor(segment.y0));
+  const int end_x = static_cast<int>(std::floor(segment.x1));
+  const int end_y = static_cast<int>(std::floor(segment.y1));
+  const double dx = segment.x1 - segment.x0;
+  const double dy = segment.y1 - segment.y0;
+  const int step_x = dx > 0.0 ? 1 : -1;
+  const int step_y = dy > 0.0 ? 1 : -1;
+  constexpr double kNever = std::numeric_limits<double>::infinity();
+  // Ray parameter at which the next vertical / horizontal cell border is crossed, and per cell.
+  const double delta_x = dx != 0.0 ? std::abs(1.0 / dx) : kNever;
+  const double delta_y = dy != 0.0 ? std::abs(1.0 / dy) : kNever;
+  double next_x = dx != 0.0 ? (step_x > 0 ? x + 1.0 - segment.x0 : segment.x0 - x) * delta_x : kNever;
+  double next_y = dy != 0.0 ? (step_y > 0 ? y + 1.0 - segment.y0 : segment.y0 - y) * delta_y : kNever;
+  // Exactly |end_x - x| + |end_y - y| steps, so rounding can never walk past the end cell.
+  while (x != end_x || y != end_y) {
     pass(x, y);
-    const int twice_error = 2 * error;
-    if (twice_error >= dy) {
-      error += dy;
+    const bool along_x = y == end_y || (x != end_x && next_x < next_y);
+    if (along_x) {
       x += step_x;
-    }
-    if (twice_error <= dx) {
-      error += dx;
+      next_x += delta_x;
+    } else {
       y += step_y;
+      next_y += delta_y;
     }
   }
 }
 
 }  // namespace
 
+bool OccupancyGrid::marked_hit_this_scan(int cell_x, int cell_y) const {
+  return (cell_flags_[index(cell_x, cell_y)] & kHitThisScan) != 0U;
+}
+
+void OccupancyGrid::miss(int cell_x, int cell_y) {
+  if (!geometry_.contains(cell_x, cell_y) || marked_hit_this_scan(cell_x, cell_y)) return;
+  add(cell_x, cell_y, model_.miss);
+}
+
 // Every cell but the last is passed through (miss); the last is where the column ends.
 void OccupancyGrid::cast_ray(double start_x, double start_y, double end_x, double end_y, bool end_is_obstacle,
                              bool at_camera_height) {
-  int x0 = 0;
-  int y0 = 0;
-  int x1 = 0;
-  int y1 = 0;
-  if (!cells_of(start_x, start_y, end_x, end_y, x0, y0, x1, y1)) return;
+  GridSegment segment;
+  if (!grid_coordinates(start_x, start_y, end_x, end_y, segment)) return;
   ++counts_.rays;
-  walk_line(x0, y0, x1, y1, [this](int x, int y) { add(x, y, model_.miss); });
+  walk_cells(segment, [this](int x, int y) { miss(x, y); });
+  const int x1 = static_cast<int>(std::floor(segment.x1));
+  const int y1 = static_cast<int>(std::floor(segment.y1));
   if (end_is_obstacle) {
     hit(x1, y1, at_camera_height);
   } else {
-    add(x1, y1, model_.miss);
+    miss(x1, y1);
   }
 }
 
 void OccupancyGrid::clear_camera_height_hits(double start_x, double start_y, double end_x, double end_y) {
-  int x0 = 0;
-  int y0 = 0;
-  int x1 = 0;
-  int y1 = 0;
-  if (!cells_of(start_x, start_y, end_x, end_y, x0, y0, x1, y1)) return;
-  walk_line(x0, y0, x1, y1, [this](int x, int y) {
-    if (geometry_.contains(x, y) && hit_at_camera_height_[index(x, y)] != 0U) add(x, y, model_.miss);
+  GridSegment segment;
+  if (!grid_coordinates(start_x, start_y, end_x, end_y, segment)) return;
+  walk_cells(segment, [this](int x, int y) {
+    if (geometry_.contains(x, y) && (cell_flags_[index(x, y)] & kLastHitAtCameraHeight) != 0U) miss(x, y);
   });
 }
 
+namespace {
+
+// Whole millimetres, saturated: NaN or negative -> 0 (from the origin), beyond 65.535 m ->
+// never (no floor is that far anyway).
+std::uint16_t saturated_mm(float distance_m) {
+  const float mm = distance_m * 1000.0F;
+  const float clamped = mm > 0.0F ? std::min(mm, kMaxDistanceMm) : 0.0F;
+  return static_cast<std::uint16_t>(std::lround(clamped));
+}
+
+}  // namespace
+
 ScanPoint ScanPoint::from_column(const core::DepthScanColumn& column) {
-  // Whole millimetres, saturated: NaN or negative -> 0 (visible from the origin), beyond
-  // 65.535 m -> never (no floor is that far anyway).
-  const float mm = column.floor_visible_from_m * 1000.0F;
-  const float clamped = mm > 0.0F ? std::min(mm, kMaxFloorVisibleMm) : 0.0F;
-  return {column.x_robot_m, column.y_robot_m, column.kind, column.obstacle_at_camera_height,
-          static_cast<std::uint16_t>(std::lround(clamped))};
+  return {column.x_robot_m,
+          column.y_robot_m,
+          column.kind,
+          column.obstacle_at_camera_height,
+          saturated_mm(column.floor_visible_from_m),
+          saturated_mm(column.measurable_from_m)};
 }
 
 void OccupancyGrid::insert_column(const Eigen::Vector2d& origin, const Eigen::Vector2d& end, const ScanPoint& point) {
   const bool obstacle = point.kind == core::DepthScanColumn::Kind::obstacle;
-  const double visible_from = point.floor_visible_from_m();
+  const double measurable_from = point.measurable_from_m();
+  const double visible_from = std::max(point.floor_visible_from_m(), measurable_from);
   const Eigen::Vector2d along = end - origin;
   const double length = along.norm();
   if (!std::isfinite(length)) {
@@ -212,9 +240,10 @@ void OccupancyGrid::insert_column(const Eigen::Vector2d& origin, const Eigen::Ve
   const auto at = [&](double distance) { return Eigen::Vector2d(origin + along * (distance / length)); };
   // The blind zone: only obstacles at the camera's height would have been seen there.
   const double blind_end = std::min(visible_from, reach);
-  if (blind_end > 0.0) {
+  if (blind_end > measurable_from) {
+    const Eigen::Vector2d start = at(measurable_from);
     const Eigen::Vector2d stop = at(blind_end);
-    clear_camera_height_hits(origin.x(), origin.y(), stop.x(), stop.y());
+    clear_camera_height_hits(start.x(), start.y(), stop.x(), stop.y());
   }
   if (obstacle && length <= visible_from) {
     cast_ray(end.x(), end.y(), end.x(), end.y(), true, point.obstacle_at_camera_height);  // its own cell only
@@ -226,33 +255,61 @@ void OccupancyGrid::insert_column(const Eigen::Vector2d& origin, const Eigen::Ve
   cast_ray(start.x(), start.y(), stop.x(), stop.y(), obstacle, point.obstacle_at_camera_height);
 }
 
-void OccupancyGrid::insert(const ScanView& scan, const core::Pose2& pose) {
-  const double c = std::cos(pose.theta);
-  const double s = std::sin(pose.theta);
-  const Eigen::Vector2d origin(pose.x + c * scan.origin_x_robot_m - s * scan.origin_y_robot_m,
-                               pose.y + s * scan.origin_x_robot_m + c * scan.origin_y_robot_m);
-  for (std::size_t i = 0; i < scan.count; ++i) {
-    const ScanPoint& point = scan.points[i];
-    if (point.kind == core::DepthScanColumn::Kind::invalid) continue;
-    const double px = point.x_robot_m;
-    const double py = point.y_robot_m;
-    insert_column(origin, Eigen::Vector2d(pose.x + c * px - s * py, pose.y + s * px + c * py), point);
+// A scan's frame: rotates and translates robot-frame points into the map frame.
+struct OccupancyGrid::ScanFrame {
+  double cos_theta;
+  double sin_theta;
+  core::Pose2 pose;
+  Eigen::Vector2d origin;  // the camera centre on the floor, map frame
+
+  ScanFrame(const core::Pose2& robot_pose, double origin_x_robot, double origin_y_robot)
+      : cos_theta(std::cos(robot_pose.theta)), sin_theta(std::sin(robot_pose.theta)), pose(robot_pose) {
+    origin = to_map(origin_x_robot, origin_y_robot);
   }
+  Eigen::Vector2d to_map(double x_robot, double y_robot) const {
+    return {pose.x + cos_theta * x_robot - sin_theta * y_robot, pose.y + sin_theta * x_robot + cos_theta * y_robot};
+  }
+};
+
+void OccupancyGrid::set_hit_marks(const Eigen::Vector2d& end, bool marked) {
+  int cell_x = 0;
+  int cell_y = 0;
+  if (!cell_of(end.x(), end.y(), cell_x, cell_y)) return;
+  std::uint8_t& flags = cell_flags_[index(cell_x, cell_y)];
+  flags = static_cast<std::uint8_t>(marked ? (flags | kHitThisScan) : (flags & ~kHitThisScan));
+}
+
+// Three passes over the valid columns. An obstacle hit wins over the misses of the same scan
+// (as in OctoMap's scan update): a cell a column ends in is marked first and the other
+// columns' rays pass it without a miss. A 2 cm poster fills a sliver of its 10 cm cell, and
+// the rays through the door beside it cross the rest of that cell.
+template <typename EachPoint>
+void OccupancyGrid::insert_points(const ScanFrame& frame, EachPoint&& each_point) {
+  const auto end_of = [&frame](const ScanPoint& point) { return frame.to_map(point.x_robot_m, point.y_robot_m); };
+  const auto mark_obstacles = [&](bool marked) {
+    each_point([&](const ScanPoint& point) {
+      if (point.kind == core::DepthScanColumn::Kind::obstacle) set_hit_marks(end_of(point), marked);
+    });
+  };
+  mark_obstacles(true);
+  each_point([&](const ScanPoint& point) { insert_column(frame.origin, end_of(point), point); });
+  mark_obstacles(false);
+}
+
+void OccupancyGrid::insert(const ScanView& scan, const core::Pose2& pose) {
+  insert_points(ScanFrame(pose, scan.origin_x_robot_m, scan.origin_y_robot_m), [&scan](auto&& visit) {
+    for (std::size_t i = 0; i < scan.count; ++i) {
+      if (scan.points[i].kind != core::DepthScanColumn::Kind::invalid) visit(scan.points[i]);
+    }
+  });
 }
 
 void OccupancyGrid::insert(const core::DepthScan& scan, const core::Pose2& pose) {
-  const double c = std::cos(pose.theta);
-  const double s = std::sin(pose.theta);
-  const double ox = scan.origin_robot.x();
-  const double oy = scan.origin_robot.y();
-  const Eigen::Vector2d origin(pose.x + c * ox - s * oy, pose.y + s * ox + c * oy);
-  for (const core::DepthScanColumn& column : scan.columns) {
-    if (column.kind == core::DepthScanColumn::Kind::invalid) continue;
-    const ScanPoint point = ScanPoint::from_column(column);
-    const double px = point.x_robot_m;
-    const double py = point.y_robot_m;
-    insert_column(origin, Eigen::Vector2d(pose.x + c * px - s * py, pose.y + s * px + c * py), point);
-  }
+  insert_points(ScanFrame(pose, scan.origin_robot.x(), scan.origin_robot.y()), [&scan](auto&& visit) {
+    for (const core::DepthScanColumn& column : scan.columns) {
+      if (column.kind != core::DepthScanColumn::Kind::invalid) visit(ScanPoint::from_column(column));
+    }
+  });
 }
 
 }  // namespace stereoscout::occupancy

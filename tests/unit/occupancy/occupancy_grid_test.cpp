@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <set>
+#include <utility>
 
 #include "stereoscout/occupancy/scan_history.hpp"
 
@@ -140,6 +142,29 @@ TEST(OccupancyGrid, LaterViewsClearAPersonInTheBlindZoneButNotALowBox) {
   EXPECT_NEAR(grid.log_odds(15, 10), 2.55F - 7 * 0.4F + 0.85F, 1e-5);
 }
 
+// A column that cannot measure nearer than 0.8 m (the image's edge, where the other camera
+// does not look) saw floor far behind a person standing 0.5 m away: it must not clear the
+// person's cell, nor any cell nearer than 0.8 m; beyond that it clears as usual.
+TEST(OccupancyGrid, NothingNearerThanAColumnCanMeasureIsCleared) {
+  OccupancyGrid grid(small_geometry(), LogOddsModel{});
+  const core::Pose2 pose{0.05, 0.05, 0.0};
+  core::DepthScan person = one_column_visible_from(0.5F, Kind::obstacle, 0.3F);
+  person.columns[0].obstacle_at_camera_height = true;
+  grid.insert(person, pose);
+  float before[20] = {};
+  for (int x = 0; x < 20; ++x) before[x] = grid.log_odds(x, 10);
+  core::DepthScan edge = one_column_visible_from(1.6F, Kind::free, 0.3F);
+  edge.columns[0].measurable_from_m = 0.8F;
+  grid.insert(edge, pose);
+  EXPECT_FLOAT_EQ(grid.log_odds(15, 10), 0.85F);  // the person's cell (0.55 m)
+  for (int x = 10; x < 18; ++x) EXPECT_FLOAT_EQ(grid.log_odds(x, 10), before[x]) << x;  // up to 0.8 m: untouched
+  for (int x = 18; x < 20; ++x) EXPECT_FLOAT_EQ(grid.log_odds(x, 10), -0.4F) << x;  // 0.85 m on: floor seen
+  // The same column measuring from the origin clears the person's cell.
+  edge.columns[0].measurable_from_m = 0.0F;
+  grid.insert(edge, pose);
+  EXPECT_FLOAT_EQ(grid.log_odds(15, 10), 0.45F);
+}
+
 TEST(OccupancyGrid, PoseRotatesAndTranslatesTheScan) {
   OccupancyGrid grid(small_geometry(), LogOddsModel{});
   // Robot at (0.05, 0.05) facing +y: a point 0.4 m ahead lands at (0.05, 0.45), cell (10, 14).
@@ -166,15 +191,93 @@ TEST(OccupancyGrid, RaysLeavingTheGridAndBrokenPointsAreSafe) {
   EXPECT_EQ(grid.insert_counts().rays_rejected, 2u);
 }
 
-TEST(OccupancyGrid, DiagonalRayIsAConnectedLine) {
-  OccupancyGrid grid(small_geometry(), LogOddsModel{});
-  grid.insert(one_column(0.5F, 0.3F, Kind::obstacle), core::Pose2{0.05, 0.05, 0.0});
-  EXPECT_FLOAT_EQ(grid.log_odds(15, 13), 0.85F);
-  int missed = 0;
-  for (int y = 0; y < 20; ++y) {
-    for (int x = 0; x < 20; ++x) missed += grid.log_odds(x, y) < 0.0F ? 1 : 0;
+// The cells a segment passes through, by dense sampling: the reference for the traversal.
+std::set<std::pair<int, int>> sampled_cells(const GridGeometry& geometry, double x0, double y0, double x1, double y1) {
+  std::set<std::pair<int, int>> cells;
+  constexpr int kSamples = 100000;
+  for (int i = 0; i <= kSamples; ++i) {
+    const double t = static_cast<double>(i) / kSamples;
+    cells.insert({static_cast<int>(std::floor((x0 + t * (x1 - x0) - geometry.origin_x_m) / geometry.resolution_m)),
+                  static_cast<int>(std::floor((y0 + t * (y1 - y0) - geometry.origin_y_m) / geometry.resolution_m))});
   }
-  EXPECT_EQ(missed, 5);  // Bresenham: max(|dx|, |dy|) cells before the end
+  return cells;
+}
+
+TEST(OccupancyGrid, RayMissesExactlyTheCellsItCrosses) {
+  const GridGeometry geometry = small_geometry();
+  // Shallow, steep and near-diagonal rays from a point off the cell centre.
+  const double ends[][2] = {{0.53, 0.31}, {0.12, 0.77}, {-0.61, 0.58}, {-0.44, -0.47}, {0.71, -0.09}};
+  for (const auto& end : ends) {
+    OccupancyGrid grid(geometry, LogOddsModel{});
+    const core::Pose2 pose{0.037, 0.062, 0.0};
+    grid.insert(one_column(static_cast<float>(end[0]), static_cast<float>(end[1]), Kind::obstacle), pose);
+    const float end_x = static_cast<float>(end[0]);  // the column stores floats
+    const float end_y = static_cast<float>(end[1]);
+    const auto crossed = sampled_cells(geometry, pose.x, pose.y, pose.x + end_x, pose.y + end_y);
+    std::set<std::pair<int, int>> touched;
+    for (int y = 0; y < geometry.height_cells; ++y) {
+      for (int x = 0; x < geometry.width_cells; ++x) {
+        if (grid.log_odds(x, y) != 0.0F) touched.insert({x, y});
+      }
+    }
+    EXPECT_EQ(touched, crossed) << end[0] << ", " << end[1];
+  }
+}
+
+TEST(OccupancyGrid, AHitWinsOverTheMissesOfTheSameScan) {
+  OccupancyGrid grid(small_geometry(), LogOddsModel{});
+  // One column ends on an obstacle in cell (15, 10); a second ray of the same scan crosses that
+  // cell on its way further out.
+  core::DepthScan scan;
+  scan.columns.push_back({0.52F, 0.02F, Kind::obstacle});
+  scan.columns.push_back({0.85F, 0.04F, Kind::obstacle});
+  grid.insert(scan, core::Pose2{0.0, 0.0, 0.0});
+  EXPECT_FLOAT_EQ(grid.log_odds(15, 10), 0.85F);
+  EXPECT_FLOAT_EQ(grid.log_odds(18, 10), 0.85F);
+  EXPECT_FLOAT_EQ(grid.log_odds(14, 10), -0.8F);  // both rays missed it
+  // In a later scan without the first column the cell is crossed and missed as usual.
+  grid.insert(one_column(0.85F, 0.04F, Kind::obstacle), core::Pose2{0.0, 0.0, 0.0});
+  EXPECT_FLOAT_EQ(grid.log_odds(15, 10), 0.45F);
+}
+
+// A 2 cm board hangs across half of a 0.9 m door in a wall; views from the corridor, through
+// the door and at the board, must not clear the board's end cell. Rays are cast against the
+// true geometry (wall line y = 1.0 with a door x in [0, 0.9); the board covers x in [0, 0.45)).
+TEST(OccupancyGrid, RaysThroughADoorDoNotClearTheThinBoardBesideIt) {
+  GridGeometry geometry;
+  geometry.width_cells = 60;
+  geometry.height_cells = 60;
+  geometry.resolution_m = 0.1;
+  geometry.origin_x_m = -3.0;
+  geometry.origin_y_m = -2.0;
+  OccupancyGrid grid(geometry, LogOddsModel{});
+  constexpr double kWallY = 0.98;  // the board's face, in the cell row y in [0.9, 1.0)
+  constexpr double kRoomDepth = 2.5;
+  for (int view = 0; view < 40; ++view) {
+    const core::Pose2 pose{-1.2 + 0.06 * view, -0.6 + 0.01 * view, 0.0};
+    core::DepthScan scan;
+    for (int column = 0; column < 160; ++column) {
+      const double bearing = 0.2 + 2.7 * column / 160.0;  // a fan pointing north
+      const double cx = std::cos(bearing);
+      const double sy = std::sin(bearing);
+      const double t_wall = (kWallY - pose.y) / sy;
+      const double x_at_wall = pose.x + t_wall * cx;
+      const bool through_door = x_at_wall >= 0.45 && x_at_wall < 0.9;
+      const double t_end = through_door ? (kWallY + kRoomDepth - pose.y) / sy : t_wall;
+      const auto kind = through_door ? Kind::free : Kind::obstacle;
+      scan.columns.push_back(
+          {static_cast<float>(t_end * cx), static_cast<float>(t_end * sy), kind});  // heading 0: robot = map axes
+    }
+    grid.insert(scan, pose);
+  }
+  int board_x = 0;
+  int board_y = 0;
+  ASSERT_TRUE(grid.cell_of(0.44, kWallY, board_x, board_y));
+  EXPECT_EQ(CellThresholds{}.classify(grid.log_odds(board_x, board_y)), CellState::occupied);
+  int door_x = 0;
+  int door_y = 0;
+  ASSERT_TRUE(grid.cell_of(0.65, kWallY, door_x, door_y));
+  EXPECT_EQ(CellThresholds{}.classify(grid.log_odds(door_x, door_y)), CellState::free);
 }
 
 TEST(CellThresholds, ClassifiesByProbability) {

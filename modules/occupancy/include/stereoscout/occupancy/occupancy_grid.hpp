@@ -5,14 +5,18 @@
 // on the floor from the camera centre towards its end point, but the camera cannot see the
 // floor in its first metre or so (the column's floor_visible_from_m: a 0.6 m high camera
 // with a 62 deg vertical field of view), where a low box or a table edge is invisible. So:
-//   - the ray starts where the column's floor becomes visible; every cell the integer line
-//     walk passes from there gets log_odds_miss;
+//   - the ray starts where the column's floor becomes visible; every cell it crosses from
+//     there (exact traversal) gets log_odds_miss, except the cells where another column of
+//     the same scan ends on an obstacle: the hit wins (a thin poster beside a door fills a
+//     sliver of its cell, and the rays through the door cross the rest of it);
 //   - an obstacle column's end cell gets log_odds_hit (an obstacle nearer than the visible
 //     floor marks only its own cell);
 //   - a free column (floor seen up to its end) stops one cell short of its end point: the
 //     farthest floor point often lies in the cell of the wall behind it, which must not be
 //     cleared; nothing is cleared when that leaves no visible floor;
-//   - invalid columns change nothing.
+//   - invalid columns change nothing, and no column changes a cell nearer than its
+//     measurable_from_m (the part of the view the other camera does not share, or beyond
+//     the matcher's largest disparity): it could not have seen an obstacle there.
 // People walk on. Each cell remembers whether its last hit came from an obstacle at the
 // camera's height (DepthScanColumn::obstacle_at_camera_height). Such an obstacle is in view
 // at every range, so a ray that passes through the cell without ending there means it has
@@ -74,23 +78,33 @@ struct CellThresholds {
   CellState classify(float log_odds) const;
 };
 
+// A ray in cell units: (x_m - origin_x_m) / resolution_m, likewise y.
+struct GridSegment {
+  double x0 = 0.0;
+  double y0 = 0.0;
+  double x1 = 0.0;
+  double y1 = 0.0;
+};
+
 class OccupancyGrid;
 // Classifies every cell of `grid` into `cells` (grid.geometry().cell_count() entries, row-major
 // like the grid). No allocation: the tick loop calls it after each roll-up.
 void classify_cells(const OccupancyGrid& grid, const CellThresholds& thresholds, CellState* cells);
 
-// One valid column of a scan, compact (robot frame at capture time): 12 bytes, so the ring of
-// 4096 scans x 640 columns stays at 31 MB.
+// One valid column of a scan, compact (robot frame at capture time): 16 bytes, so the ring of
+// 4096 scans x 640 columns stays at 42 MB.
 struct ScanPoint {
   float x_robot_m = 0.0F;
   float y_robot_m = 0.0F;
   core::DepthScanColumn::Kind kind = core::DepthScanColumn::Kind::invalid;
   bool obstacle_at_camera_height = false;
   std::uint16_t floor_visible_from_mm = 0;  // DepthScanColumn::floor_visible_from_m, whole mm
+  std::uint16_t measurable_from_mm = 0;     // DepthScanColumn::measurable_from_m, whole mm
 
   // The one conversion both insert() overloads use, so they give identical cells.
   static ScanPoint from_column(const core::DepthScanColumn& column);
   double floor_visible_from_m() const { return 0.001 * floor_visible_from_mm; }
+  double measurable_from_m() const { return 0.001 * measurable_from_mm; }
 };
 
 // A stored scan as seen by the grid: the camera centre and the valid columns in order.
@@ -136,9 +150,19 @@ class OccupancyGrid {
     return static_cast<std::size_t>(cell_y) * static_cast<std::size_t>(geometry_.width_cells) +
            static_cast<std::size_t>(cell_x);
   }
+  struct ScanFrame;
+  static constexpr std::uint8_t kLastHitAtCameraHeight = 1U;  // the cell's last hit was at the camera's height
+  static constexpr std::uint8_t kHitThisScan = 2U;            // a column of the scan being inserted ends here
+
   void add(int cell_x, int cell_y, float delta);
   void hit(int cell_x, int cell_y, bool at_camera_height);
-  bool cells_of(double start_x, double start_y, double end_x, double end_y, int& x0, int& y0, int& x1, int& y1);
+  // log_odds_miss, unless a column of the scan being inserted ends in the cell.
+  void miss(int cell_x, int cell_y);
+  bool marked_hit_this_scan(int cell_x, int cell_y) const;
+  void set_hit_marks(const Eigen::Vector2d& end, bool marked);
+  bool grid_coordinates(double start_x, double start_y, double end_x, double end_y, GridSegment& segment);
+  template <typename EachPoint>
+  void insert_points(const ScanFrame& frame, EachPoint&& each_point);
   void cast_ray(double start_x, double start_y, double end_x, double end_y, bool end_is_obstacle,
                 bool at_camera_height);
   // Misses, before the end cell, only the cells whose last hit was at the camera's height.
@@ -149,7 +173,7 @@ class OccupancyGrid {
   GridGeometry geometry_;
   LogOddsModel model_;
   std::unique_ptr<float[]> cells_;
-  std::unique_ptr<std::uint8_t[]> hit_at_camera_height_;  // 1: the cell's last hit was
+  std::unique_ptr<std::uint8_t[]> cell_flags_;  // kLastHitAtCameraHeight | kHitThisScan
   InsertCounts counts_;
 };
 
