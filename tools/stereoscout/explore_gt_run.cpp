@@ -21,7 +21,11 @@ namespace {
 
 // Forward-maps the right image's ground-truth depth to a disparity map referenced to the left
 // image, as the dense matcher would produce it (nearest surface wins where two land on one pixel).
-void disparity_from_depth(const cv::Mat& depth_right, double focal_baseline, cv::Mat& disparity_left) {
+// The disparities the dense matcher could give: none above its largest disparity nor in the
+// left image's unmatched right border (ObstacleScanParams), so the scan sees what the stack's does.
+void disparity_from_depth(const cv::Mat& depth_right, double focal_baseline, const vision::ObstacleScanParams& limits,
+                          cv::Mat& disparity_left) {
+  const int last_matched_left = depth_right.cols - 1 - limits.unmatched_border_px;
   disparity_left.setTo(0.0F);
   for (int y = 0; y < depth_right.rows; ++y) {
     const float* depth = depth_right.ptr<float>(y);
@@ -30,7 +34,7 @@ void disparity_from_depth(const cv::Mat& depth_right, double focal_baseline, cv:
       if (!(depth[x] > 0.0F) || !std::isfinite(depth[x])) continue;
       const double d = focal_baseline / static_cast<double>(depth[x]);
       const long column = std::lround(x + d);
-      if (column >= depth_right.cols) continue;
+      if (column > last_matched_left || d > limits.max_disparity_px) continue;
       // The scanner recovers the right-image column as column - d (within half a pixel of x).
       float& out = disparity[column];
       const auto value = static_cast<float>(d);
@@ -63,8 +67,8 @@ ExploreGtResult run_explore_gt(const core::SystemConfig& config, const host_sim:
   host_sim::StereoRenderer renderer(world, config.camera, config.sim, seed);
   const core::CameraMount mount{config.camera.mount_x_m, config.camera.mount_y_m, config.camera.mount_height_m,
                                 core::degrees_to_radians(config.camera.mount_tilt_deg)};
-  vision::ObstacleScanner scanner(vision::scan_params_from_config(config.vision, config.robot),
-                                  vision::calibration_from_config(config.camera), mount);
+  const vision::ObstacleScanParams scan_params = vision::scan_params_from_config(config.vision, config.robot);
+  vision::ObstacleScanner scanner(scan_params, vision::calibration_from_config(config.camera), mount);
   core::DepthScan scan;
   scanner.allocate(scan);
   cv::Mat left(config.camera.height_px, config.camera.width_px, CV_8UC1);
@@ -102,7 +106,7 @@ ExploreGtResult run_explore_gt(const core::SystemConfig& config, const host_sim:
                             std::abs(core::wrap_angle(camera_heading - last_update_camera_heading)) > min_rotation;
     if (update_due) {
       renderer.render(pose, simulator.pan_rad(), simulator.time_s(), frame++, left, right, &depth);
-      disparity_from_depth(depth, focal_baseline, disparity);
+      disparity_from_depth(depth, focal_baseline, scan_params, disparity);
       scanner.compute(disparity, simulator.pan_rad(), simulator.time_ns(), scan);
       grid.insert(scan, pose);
       occupancy::classify_cells(grid, thresholds, cells.data());

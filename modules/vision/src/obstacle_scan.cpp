@@ -15,6 +15,9 @@ ObstacleScanParams scan_params_from_config(const core::VisionConfig& vision, con
   params.robot_height_m = robot.height_m;
   params.max_range_m = vision.scan_max_range_m;
   params.min_obstacle_pixels = vision.scan_min_obstacle_pixels;
+  params.same_surface_depth_m = vision.scan_same_surface_depth_m;
+  params.max_disparity_px = vision.dense_num_disparities - 1;
+  params.unmatched_border_px = vision.dense_window_px / 2 + detail::kCensusRadius;
   return params;
 }
 
@@ -34,6 +37,21 @@ float floor_visible_from(const StereoCalibration& calibration, const core::Camer
   return static_cast<float>(scale * direction.head<2>().norm());
 }
 
+// Floor distance from the camera centre's foot to the nearest point `column` can measure (at
+// the principal row): the depth of the largest disparity the matcher gives there. +infinity
+// when it gives none.
+float measurable_from(const ObstacleScanParams& params, const StereoCalibration& calibration,
+                      const core::CameraMount& mount, int column) {
+  const int last_matched_left = calibration.width_px - 1 - params.unmatched_border_px;
+  const int largest_disparity = std::min(params.max_disparity_px, last_matched_left - column);
+  if (largest_disparity < 1) return std::numeric_limits<float>::infinity();
+  const double depth = calibration.focal_px * calibration.baseline_m / largest_disparity;
+  const Eigen::Vector3d offset =
+      core::robot_from_camera(mount, 0.0).linear() *
+      Eigen::Vector3d(depth * (column - calibration.principal_x_px) / calibration.focal_px, 0.0, depth);
+  return static_cast<float>(offset.head<2>().norm());
+}
+
 }  // namespace
 
 ObstacleScanner::ObstacleScanner(const ObstacleScanParams& params, const StereoCalibration& calibration,
@@ -44,9 +62,11 @@ ObstacleScanner::ObstacleScanner(const ObstacleScanParams& params, const StereoC
       per_column_(static_cast<std::size_t>(std::max(params.min_obstacle_pixels, 1))),
       columns_(static_cast<std::size_t>(calibration.width_px)),
       nearest_(static_cast<std::size_t>(calibration.width_px) * per_column_),
-      floor_visible_from_m_(static_cast<std::size_t>(calibration.width_px)) {
+      floor_visible_from_m_(static_cast<std::size_t>(calibration.width_px)),
+      measurable_from_m_(static_cast<std::size_t>(calibration.width_px)) {
   for (int column = 0; column < calibration.width_px; ++column) {
     floor_visible_from_m_[static_cast<std::size_t>(column)] = floor_visible_from(calibration, mount, column);
+    measurable_from_m_[static_cast<std::size_t>(column)] = measurable_from(params, calibration, mount, column);
   }
 }
 
@@ -126,17 +146,21 @@ void ObstacleScanner::compute(const cv::Mat& disparity, double pan_rad, std::int
   for (std::size_t column = 0; column < columns_.size(); ++column) {
     const ColumnState& state = columns_[column];
     core::DepthScanColumn& out = scan.columns[column];
-    if (static_cast<std::size_t>(state.obstacle_points) == per_column_) {
+    const float visible_from = floor_visible_from_m_[column];
+    const float measurable = measurable_from_m_[column];
+    if (!(measurable < params_.max_range_m)) {
+      out = {0.0F, 0.0F, core::DepthScanColumn::Kind::invalid, visible_from, false, measurable};
+    } else if (static_cast<std::size_t>(state.obstacle_points) == per_column_) {
       // The farthest of the nearest min_obstacle_pixels points: confirmed by that many.
       const Candidate& confirmed = nearest_[column * per_column_ + per_column_ - 1];
       const bool at_camera_height = state.nearest_at_camera_height_m <= confirmed.range_m + params_.same_surface_depth_m;
       out = {static_cast<float>(confirmed.x_m), static_cast<float>(confirmed.y_m), core::DepthScanColumn::Kind::obstacle,
-             floor_visible_from_m_[column], at_camera_height};
+             visible_from, at_camera_height, measurable};
     } else if (state.has_floor) {
       out = {static_cast<float>(state.farthest_floor.x_m), static_cast<float>(state.farthest_floor.y_m),
-             core::DepthScanColumn::Kind::free, floor_visible_from_m_[column], false};
+             core::DepthScanColumn::Kind::free, visible_from, false, measurable};
     } else {
-      out = {0.0F, 0.0F, core::DepthScanColumn::Kind::invalid, floor_visible_from_m_[column], false};
+      out = {0.0F, 0.0F, core::DepthScanColumn::Kind::invalid, visible_from, false, measurable};
     }
   }
 }

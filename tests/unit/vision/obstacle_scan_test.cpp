@@ -48,10 +48,33 @@ TEST(ObstacleScan, EmptyFloorIsFreeUpToMaxRange) {
   const core::DepthScan& scan = setup.run(test::Scene{});
   EXPECT_EQ(scan.timestamp_ns, 5);
   EXPECT_NEAR(scan.origin_robot.x(), 0.10, 1e-12);
+  int free_columns = 0;
   for (const core::DepthScanColumn& column : scan.columns) {
+    if (!(column.measurable_from_m < 6.0F)) {
+      EXPECT_EQ(column.kind, Kind::invalid);  // at the right edge: nothing within range measurable
+      continue;
+    }
     ASSERT_EQ(column.kind, Kind::free);
     EXPECT_NEAR(range_of(scan, column), 6.0, 1e-3);
+    ++free_columns;
   }
+  EXPECT_GT(free_columns, 600);
+}
+
+// A right-image column c holds left pixels c + d: the largest disparity there is
+// min(63, 633 - c) (64 disparities, the matcher's 6-pixel border), and its depth f B / d is the
+// nearest the column can measure (on the floor, longer towards the edges like the floor).
+TEST(ObstacleScan, ColumnsSayHowNearTheyCanMeasure) {
+  ScanSetup setup;
+  const core::DepthScan& scan = setup.run(test::Scene{});
+  const auto on_floor = [](int column, double depth) {
+    return depth * std::sqrt(1.0 + std::pow((column - 319.5) / 400.0, 2));
+  };
+  EXPECT_NEAR(scan.columns[0].measurable_from_m, on_floor(0, 40.0 / 63.0), 1e-5);
+  EXPECT_NEAR(scan.columns[320].measurable_from_m, on_floor(320, 40.0 / 63.0), 1e-5);
+  EXPECT_NEAR(scan.columns[600].measurable_from_m, on_floor(600, 40.0 / 33.0), 1e-5);
+  EXPECT_FALSE(std::isfinite(scan.columns[633].measurable_from_m));
+  EXPECT_EQ(scan.columns[633].kind, Kind::invalid);
 }
 
 TEST(ObstacleScan, ColumnsSayWhereTheirFloorBecomesVisible) {

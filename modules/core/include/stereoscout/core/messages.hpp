@@ -70,6 +70,10 @@ struct DepthScanColumn {
   // blind zone included, so a later view through its cell that does not see it means it has
   // gone (a person walked on).
   bool obstacle_at_camera_height = false;
+  // Distance on the floor from `origin_robot` nearer than which this column cannot measure
+  // anything at all: the matcher's largest disparity, and near the image's edge the part of
+  // the view the other camera does not share. The grid changes no cell nearer than that.
+  float measurable_from_m = 0.0F;
 };
 
 struct DepthScan {

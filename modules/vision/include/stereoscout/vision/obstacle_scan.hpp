@@ -22,6 +22,13 @@
 // for the paper's head at 0.6 m). Nearer floor, and a low obstacle on it, is out of view, so
 // the occupancy grid must not clear cells there. It does not depend on the pan angle (a turn
 // about the vertical axis keeps floor distances), so it is computed once per column.
+// And measurable_from_m: the nearest distance the column can measure at all. A point at
+// right column c with disparity d is left pixel c + d, so the largest disparity the matcher
+// gives there, min(max_disparity_px, last matched left column - c), bounds how near it can
+// be. Towards the right image's right edge that is far (the left camera does not see the
+// near part of the view), and a column there would otherwise report floor far behind an
+// obstacle it cannot see: the grid must not clear cells nearer than that. A column that can
+// measure nothing within max_range_m is invalid.
 // An obstacle column is also marked obstacle_at_camera_height when the column holds an
 // obstacle point within floor_tolerance_m of the camera's height no more than
 // same_surface_depth_m behind the obstacle: such an obstacle (a person, a wall) stays in view
@@ -48,6 +55,11 @@ struct ObstacleScanParams {
   // How far behind a column's nearest obstacle point a point at the camera's height still
   // counts as the same obstacle (a person's legs and chest, a wall's face).
   double same_surface_depth_m = 0.15;
+  // What the disparity map can hold, for each column's measurable_from_m: the largest
+  // disparity (dense_num_disparities - 1), and the columns at the left image's right edge the
+  // matcher leaves unmatched (its window and census radii).
+  int max_disparity_px = 63;
+  int unmatched_border_px = 6;
 };
 
 ObstacleScanParams scan_params_from_config(const core::VisionConfig& vision, const core::RobotConfig& robot);
@@ -86,6 +98,7 @@ class ObstacleScanner {
   std::vector<ColumnState> columns_;       // one per image column, sized at construction
   std::vector<Candidate> nearest_;         // per column: its nearest obstacle points, sorted
   std::vector<float> floor_visible_from_m_;  // per column, from the calibration and mount
+  std::vector<float> measurable_from_m_;     // per column, from the calibration and mount
 };
 
 }  // namespace stereoscout::vision
