@@ -240,18 +240,70 @@ __attribute__((target("avx2,popcnt"))) void census_costs_avx2_table(const std::u
     out[x] = static_cast<std::uint8_t>(__builtin_popcountll(left[x] ^ right[x - d]));
   }
 }
+
+// The same with AVX-512: eight censuses to a register and the popcount instruction for
+// 64-bit lanes (VPOPCNTQ), narrowed to bytes in pixel order.
+#define STEREOSCOUT_AVX512_TARGET "avx512f,avx512bw,avx512vl,avx512vpopcntdq,avx2,popcnt"
+STEREOSCOUT_DEFINE_KERNELS(avx512, __attribute__((target(STEREOSCOUT_AVX512_TARGET))))
+
+__attribute__((target(STEREOSCOUT_AVX512_TARGET))) void census_costs_avx512_popcount(const std::uint64_t* left,
+                                                                                     const std::uint64_t* right,
+                                                                                     std::uint8_t* out, int first,
+                                                                                     int width, int d) {
+  int x = first;
+  for (; x + 16 <= width; x += 16) {
+    const __m512i low = _mm512_popcnt_epi64(_mm512_xor_si512(_mm512_loadu_si512(left + x), _mm512_loadu_si512(right + x - d)));
+    const __m512i high =
+        _mm512_popcnt_epi64(_mm512_xor_si512(_mm512_loadu_si512(left + x + 8), _mm512_loadu_si512(right + x + 8 - d)));
+    const __m128i bytes = _mm_unpacklo_epi64(_mm512_maskz_cvtepi64_epi8(0xFF, low), _mm512_maskz_cvtepi64_epi8(0xFF, high));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out + x), bytes);
+  }
+  for (; x < width; ++x) {
+    out[x] = static_cast<std::uint8_t>(__builtin_popcountll(left[x] ^ right[x - d]));
+  }
+}
+
+bool cpu_has_avx512_popcount() {
+  return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+         __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512vpopcntdq");
+}
+
+bool cpu_has_avx2() { return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt"); }
+
+DenseKernels avx512_kernels() {
+  DenseKernels kernels = kernels_avx512();
+  kernels.census_costs = census_costs_avx512_popcount;
+  return kernels;
+}
+
+DenseKernels avx2_kernels() {
+  DenseKernels kernels = kernels_avx2();
+  kernels.census_costs = census_costs_avx2_table;
+  return kernels;
+}
 #endif
 
 }  // namespace
 
 DenseKernels portable_dense_kernels() { return kernels_portable(); }
 
+std::vector<DenseKernels> supported_dense_kernels() {
+  std::vector<DenseKernels> kernels{kernels_portable()};
+#if defined(STEREOSCOUT_HAS_AVX2_KERNELS)
+  if (__builtin_cpu_supports("popcnt")) kernels.push_back(kernels_popcnt());
+  if (cpu_has_avx2()) kernels.push_back(avx2_kernels());
+  if (cpu_has_avx512_popcount()) kernels.push_back(avx512_kernels());
+#endif
+  return kernels;
+}
+
 DenseKernels fastest_dense_kernels(bool allow_simd) {
 #if defined(STEREOSCOUT_HAS_AVX2_KERNELS)
-  if (allow_simd && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt")) {
-    DenseKernels kernels = kernels_avx2();
-    kernels.census_costs = census_costs_avx2_table;
-    return kernels;
+  if (allow_simd && cpu_has_avx512_popcount()) {
+    return avx512_kernels();
+  }
+  if (allow_simd && cpu_has_avx2()) {
+    return avx2_kernels();
   }
   if (allow_simd && __builtin_cpu_supports("popcnt")) {
     return kernels_popcnt();

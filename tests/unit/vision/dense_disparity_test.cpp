@@ -127,7 +127,7 @@ TEST(DenseDisparity, BoxSumByDoublingIsTheWindowSum) {
     value = static_cast<std::uint16_t>(random.uniform_index(48U * 31U));
   }
   std::vector<std::uint16_t> scratch(static_cast<std::size_t>(detail::kMaxBoxLevels * width));
-  for (const detail::DenseKernels& kernels : {detail::portable_dense_kernels(), detail::fastest_dense_kernels(true)}) {
+  for (const detail::DenseKernels& kernels : detail::supported_dense_kernels()) {
     for (int window = 1; window <= 31; window += 2) {
       const int radius = window / 2;
       std::vector<std::uint16_t> out(columns.size(), 0);
@@ -147,7 +147,7 @@ TEST(DenseDisparity, BoxSumByDoublingIsTheWindowSum) {
 // over the 7x7 window, centre left out) is darker than the centre; borders 0.
 TEST(DenseDisparity, CensusTransformMatchesTheDefinition) {
   const cv::Mat image = random_texture(83, 29, 6);
-  for (const detail::DenseKernels& kernels : {detail::portable_dense_kernels(), detail::fastest_dense_kernels(true)}) {
+  for (const detail::DenseKernels& kernels : detail::supported_dense_kernels()) {
     std::vector<std::uint64_t> census(static_cast<std::size_t>(image.total()), 1);
     kernels.census(image.ptr<std::uint8_t>(0), image.step[0], image.cols, image.rows, census.data());
     for (int y = 0; y < image.rows; ++y) {
@@ -165,6 +165,54 @@ TEST(DenseDisparity, CensusTransformMatchesTheDefinition) {
         ASSERT_EQ(census[static_cast<std::size_t>(y * image.cols + x)], expected) << kernels.name << " " << x << "," << y;
       }
     }
+  }
+}
+
+// Every build of the cost and winner kernels that this CPU runs gives the portable build's
+// numbers (widths that leave a tail after the vector loops, random censuses and costs).
+TEST(DenseDisparity, EveryKernelBuildGivesThePortableCostsAndWinners) {
+  const int width = 203;
+  const int disparities = 21;
+  core::RandomStream random(17, core::StreamId{0, 0, 0});
+  std::vector<std::uint64_t> left(static_cast<std::size_t>(width));
+  std::vector<std::uint64_t> right(static_cast<std::size_t>(width));
+  for (std::size_t i = 0; i < left.size(); ++i) {
+    // 48-bit censuses from two 24-bit draws.
+    left[i] = (std::uint64_t{random.uniform_index(1U << 24U)} << 24U) | random.uniform_index(1U << 24U);
+    right[i] = (std::uint64_t{random.uniform_index(1U << 24U)} << 24U) | random.uniform_index(1U << 24U);
+  }
+  std::vector<std::uint16_t> aggregated(static_cast<std::size_t>(width * disparities));
+  for (std::uint16_t& cost : aggregated) cost = static_cast<std::uint16_t>(random.uniform_index(200U));
+  const auto run = [&](const detail::DenseKernels& kernels, std::vector<std::uint8_t>& costs,
+                       std::vector<std::vector<std::int32_t>>& winners) {
+    costs.assign(static_cast<std::size_t>(width * disparities), 0);
+    for (int d = 0; d < disparities; ++d) {
+      kernels.census_costs(left.data(), right.data(), &costs[static_cast<std::size_t>(d * width)], d + 3, width, d);
+    }
+    std::vector<std::uint16_t> best(static_cast<std::size_t>(width));
+    std::vector<std::uint16_t> second(best.size());
+    std::vector<std::int16_t> best_d(best.size());
+    std::vector<std::uint16_t> right_best(best.size());
+    std::vector<std::int16_t> right_best_d(best.size());
+    detail::WinnerBuffers buffers{aggregated.data(), width,         disparities,        6,
+                                  width - 7,         best.data(),   second.data(),      best_d.data(),
+                                  right_best.data(), right_best_d.data()};
+    kernels.winners(buffers);
+    winners = {{best.begin(), best.end()},
+               {second.begin(), second.end()},
+               {best_d.begin(), best_d.end()},
+               {right_best.begin(), right_best.end()},
+               {right_best_d.begin(), right_best_d.end()}};
+  };
+  std::vector<std::uint8_t> portable_costs;
+  std::vector<std::vector<std::int32_t>> portable_winners;
+  run(detail::portable_dense_kernels(), portable_costs, portable_winners);
+  for (const detail::DenseKernels& kernels : detail::supported_dense_kernels()) {
+    std::vector<std::uint8_t> costs;
+    std::vector<std::vector<std::int32_t>> winners;
+    run(kernels, costs, winners);
+    EXPECT_EQ(costs, portable_costs) << kernels.name;
+    EXPECT_EQ(winners, portable_winners) << kernels.name;
   }
 }
 

@@ -1,11 +1,12 @@
 #pragma once
 // The integer inner loops of the dense block matcher (an implementation detail of
 // DenseDisparityMatcher), compiled for the baseline instruction set and, on x86-64, also with
-// the popcount instruction and with AVX2 (chosen at run time by what the CPU has). Integer
+// the popcount instruction, with AVX2 and with AVX-512 (chosen at run time by what the CPU has). Integer
 // arithmetic only, so every build gives bit-identical results (a DenseDisparity test compares
 // them); elsewhere, and with DenseDisparityParams::allow_simd off, the portable build runs.
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 namespace stereoscout::vision::detail {
 
@@ -45,7 +46,10 @@ struct DenseKernels {
 };
 
 DenseKernels portable_dense_kernels();
-// With allow_simd: the AVX2 build if the CPU runs it, else the popcount one, else portable.
+// With allow_simd: the AVX-512 build if the CPU runs it, else AVX2, else the popcount one,
+// else portable.
 DenseKernels fastest_dense_kernels(bool allow_simd);
+// Every build this CPU runs, portable first (for the tests that compare them).
+std::vector<DenseKernels> supported_dense_kernels();
 
 }  // namespace stereoscout::vision::detail
