@@ -115,7 +115,10 @@ void Explorer::check_plan(const ExploreInput& input) {
 
 bool Explorer::replan(const ExploreInput& input) {
   follower_.reset();
-  if (planner_.plan(map_, cell_of(input.pose), goal_.cell, plan_) == PlanResult::found) return true;
+  if (planner_.plan(map_, cell_of(input.pose), goal_.cell, plan_) == PlanResult::found) {
+    fresh_look_ = false;  // the robot drives on: the next failure deserves a look of its own
+    return true;
+  }
   ++counters_.plan_failures;
   return false;
 }
@@ -139,7 +142,6 @@ void Explorer::choose_goal(const ExploreInput& input) {
     goal_ = goal;
     if (replan(input)) {
       state_ = ExploreState::drive;
-      fresh_look_ = false;
       best_goal_distance_m_ = std::numeric_limits<double>::infinity();
       last_progress_time_s_ = input.time_s;
       return;
@@ -178,7 +180,16 @@ void Explorer::goal_failed(const ExploreInput& input) {
       begin_look(input);
       return;
     }
+    // Failed right after a look from here: a passer-by may still stand in the only door, so
+    // try again from a new look, up to goal_failures_before_blacklist times.
     ++counters_.return_failures;
+    if (params_.explore.pan_at_goal && counters_.return_failures < static_cast<std::uint64_t>(
+                                                                       params_.explore.goal_failures_before_blacklist)) {
+      return_after_look_ = true;
+      keep_progress_after_look_ = false;
+      begin_look(input);
+      return;
+    }
     state_ = ExploreState::finished;
     return;
   }

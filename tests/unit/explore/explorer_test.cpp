@@ -265,6 +265,45 @@ TEST(Explorer, ReturnsToTheStartAfterTheTimeLimit) {
             ExploreState::finished);
 }
 
+// Steps through a whole look with the pan unit, each quarter turn reached at once.
+ExploreOutput finish_a_look(Explorer& explorer, const GridView& grid, double x, double y, double time_s) {
+  ExploreOutput output;
+  for (const double target : {core::kPi / 2, core::kPi, -core::kPi / 2, 0.0}) {
+    ExploreInput reached = input_at(grid, x, y, 0.0, time_s, false);
+    reached.pan_rad = target;
+    output = explorer.step(reached);
+  }
+  return output;
+}
+
+// A passer-by blocks the only way back: the robot looks, tries again after each fresh look,
+// goes on once the way is clear, and gives the return up after
+// goal_failures_before_blacklist failures, each right after a look.
+TEST(Explorer, AReturnBlockedByAPasserByLooksAndTriesAgain) {
+  Corridor scene;
+  ExploreParams params = test_params(100, 60);
+  params.explore.time_limit_s = 10.0;
+  Explorer explorer(params);
+  explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.0, true));
+  ASSERT_EQ(finish_a_look(explorer, scene.grid.view(), 1.5, 3.0, 1.0).state, ExploreState::drive);
+  ASSERT_EQ(explorer.step(input_at(scene.grid.view(), 5.0, 3.0, 0.0, 10.0, false)).state, ExploreState::returning);
+  const auto block = [&](CellState state) { scene.grid.fill(30, 1, 32, 58, state); };
+  block(CellState::occupied);
+  EXPECT_EQ(explorer.step(input_at(scene.grid.view(), 5.0, 3.0, 0.0, 11.0, true)).state, ExploreState::look_around);
+  EXPECT_EQ(explorer.counters().return_failures, 0U);  // the last look was from elsewhere
+  EXPECT_EQ(finish_a_look(explorer, scene.grid.view(), 5.0, 3.0, 12.0).state, ExploreState::look_around);
+  EXPECT_EQ(explorer.counters().return_failures, 1U);  // no way even after a look: look again
+  block(CellState::free);
+  EXPECT_EQ(finish_a_look(explorer, scene.grid.view(), 5.0, 3.0, 13.0).state, ExploreState::returning);
+  ASSERT_FALSE(explorer.plan().empty());
+  // Blocked for good: two more failures after looks end it.
+  block(CellState::occupied);
+  EXPECT_EQ(explorer.step(input_at(scene.grid.view(), 5.0, 3.0, 0.0, 14.0, true)).state, ExploreState::look_around);
+  EXPECT_EQ(finish_a_look(explorer, scene.grid.view(), 5.0, 3.0, 15.0).state, ExploreState::look_around);
+  EXPECT_EQ(finish_a_look(explorer, scene.grid.view(), 5.0, 3.0, 16.0).state, ExploreState::finished);
+  EXPECT_EQ(explorer.counters().return_failures, 3U);
+}
+
 TEST(Explorer, StopsExploringAtTheTimeLimit) {
   Corridor scene;
   ExploreParams params = no_look_params(100, 60);

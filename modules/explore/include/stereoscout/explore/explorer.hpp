@@ -63,7 +63,7 @@ struct ExploreCounters {
   std::uint64_t safety_stops = 0;
   std::uint64_t emergency_stop_ticks = 0;
   std::uint64_t looks = 0;
-  std::uint64_t return_failures = 0;
+  std::uint64_t return_failures = 0;  // no way back right after a look; given up at goal_failures_before_blacklist
   std::uint64_t looks_before_giving_up = 0;  // no goal, or no way back: one more look first
 };
 
@@ -117,7 +117,7 @@ class Explorer {
   double look_turned_rad_ = 0.0;
   double look_last_heading_ = 0.0;
   double pan_target_rad_ = 0.0;
-  bool fresh_look_ = false;         // a look ended and no goal has been driven to since
+  bool fresh_look_ = false;         // a look ended here and no plan has been found since
   bool return_after_look_ = false;  // after the look: back on the way to the start
   bool resume_after_look_ = false;  // after the look: back on the way to the same goal
   bool keep_progress_after_look_ = false;  // the look was a safety stop's: keep the stuck timer

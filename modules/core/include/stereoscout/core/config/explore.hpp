@@ -42,7 +42,7 @@ inline void describe(ConfigVisitor& v, ExploreConfig& c) {
   v.number("min_goal_value", c.min_goal_value, {0.0, 1000.0, "", "Exploration ends when no goal is worth more than this (about three rays seeing unknown space at r*; small unknown pockets, such as the floor under a table, are not worth a trip)."});
   v.number("max_pocket_area_m2", c.max_pocket_area_m2, {0.0, 1000.0, "m^2", "An unknown region enclosed by known cells and no larger than this (inside a low box or cupboard, under a table, along a wall) cannot be seen from the free space and is not a frontier; 0 treats every unknown region as a frontier."});
   v.number("goal_tolerance_m", c.goal_tolerance_m, {0.01, 5.0, "m", "A goal is reached within this distance."});
-  v.integer_field("goal_failures_before_blacklist", c.goal_failures_before_blacklist, {1, 100, "", "A goal that failed this many times is never chosen again."});
+  v.integer_field("goal_failures_before_blacklist", c.goal_failures_before_blacklist, {1, 100, "", "A goal that failed this many times is never chosen again; the return to the start is given up after this many failures, each right after a fresh look."});
   v.number("visited_goal_radius_m", c.visited_goal_radius_m, {0.0, 10.0, "m", "Candidates this close to a blacklisted or already visited goal are skipped."});
   v.integer_field("goal_memory", c.goal_memory, {1, 100000, "goals", "Failed and visited goals remembered (fixed list; when full, new ones are counted and forgotten)."});
   v.number("unknown_travel_radius_m", c.unknown_travel_radius_m, {0.0, 5.0, "m", "Paths may cross unknown cells this close to the robot (the camera cannot see the floor right in front of it)."});
