@@ -29,13 +29,6 @@
 // near part of the view), and a column there would otherwise report floor far behind an
 // obstacle it cannot see: the grid must not clear cells nearer than that. A column that can
 // measure nothing within max_range_m is invalid.
-// A blank wall gives stereo no disparity, so a column facing one would see floor up to the
-// wall and nothing else, and report free space with the wall's cell left unknown (the office
-// corridor's walls: the robot drove into them). So a column with no obstacle whose floor
-// ends within max_range_m, with no point off the floor seen farther than
-// same_surface_depth_m beyond that end (at any height: a far wall above the horizon, a
-// ceiling), reports an obstacle where its floor ends (blank_wall_at_floor_end). Where floor
-// texture fades into the distance, what lies beyond is usually seen above the horizon.
 // An obstacle column is also marked obstacle_at_camera_height when the column holds an
 // obstacle point within floor_tolerance_m of the camera's height no more than
 // same_surface_depth_m behind the obstacle: such an obstacle (a person, a wall) stays in view
@@ -67,9 +60,6 @@ struct ObstacleScanParams {
   // matcher leaves unmatched (its window and census radii).
   int max_disparity_px = 63;
   int unmatched_border_px = 6;
-  // A column whose floor ends within range with nothing seen beyond it reports an obstacle
-  // where the floor ends (a blank wall).
-  bool blank_wall_at_floor_end = true;
 };
 
 ObstacleScanParams scan_params_from_config(const core::VisionConfig& vision, const core::RobotConfig& robot);
@@ -96,9 +86,7 @@ class ObstacleScanner {
     bool has_floor = false;
     Candidate farthest_floor;
     double nearest_at_camera_height_m = 1e9;  // range of the nearest obstacle point there
-    double farthest_off_floor_m = 0.0;        // range of the farthest point not on the floor
   };
-  bool floor_ends_at_unseen_surface(const ColumnState& state) const;
   void reset_columns();
   void add_point(int column, const Eigen::Vector3d& point, const Eigen::Vector3d& origin);
   void keep_nearest(ColumnState& state, Candidate* nearest, const Candidate& candidate) const;

@@ -39,7 +39,6 @@ struct VisionConfig {
   double dense_speckle_max_step_px = 1.0;
   int scan_min_obstacle_pixels = 4;
   double scan_same_surface_depth_m = 0.15;
-  bool scan_blank_wall_at_floor_end = true;
 };
 
 inline void describe(ConfigVisitor& v, VisionConfig& c) {
@@ -74,7 +73,6 @@ inline void describe(ConfigVisitor& v, VisionConfig& c) {
   v.number("dense_speckle_max_step_px", c.dense_speckle_max_step_px, {0.0, 16.0, "px", "Speckle filter: neighbouring pixels whose disparities differ by at most this belong to one region."});
   v.integer_field("scan_min_obstacle_pixels", c.scan_min_obstacle_pixels, {1, 100, "px", "Pixels of a column that must lie above the floor before the nearest of them counts as an obstacle (rejects isolated mismatches)."});
   v.number("scan_same_surface_depth_m", c.scan_same_surface_depth_m, {0.0, 2.0, "m", "How far behind a column's nearest obstacle point a point at the camera's height still counts as the same obstacle (a person's legs and chest, a wall's face); such an obstacle is in view at every range, so the grid clears its cell when a later view sees through it."});
-  v.boolean("scan_blank_wall_at_floor_end", c.scan_blank_wall_at_floor_end, "A column whose floor ends within scan_max_range_m with nothing seen beyond it (at any height) reports an obstacle where the floor ends: a blank wall gives stereo no disparity, and without this the robot drives into it.");
   v.require(c.dense_window_px % 2 == 1, "dense_window_px", "must be odd");
   v.require(c.min_disparity_px < c.max_disparity_px, "max_disparity_px", "must be larger than min_disparity_px");
   v.end_section();
