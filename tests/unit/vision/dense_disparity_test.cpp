@@ -194,9 +194,10 @@ TEST(DenseDisparity, EveryKernelBuildGivesThePortableCostsAndWinners) {
     std::vector<std::int16_t> best_d(best.size());
     std::vector<std::uint16_t> right_best(best.size());
     std::vector<std::int16_t> right_best_d(best.size());
+    std::vector<std::uint16_t> behind(best.size());
     detail::WinnerBuffers buffers{aggregated.data(), width,         disparities,        6,
                                   width - 7,         best.data(),   second.data(),      best_d.data(),
-                                  right_best.data(), right_best_d.data()};
+                                  right_best.data(), right_best_d.data(), behind.data()};
     kernels.winners(buffers);
     winners = {{best.begin(), best.end()},
                {second.begin(), second.end()},
@@ -207,6 +208,22 @@ TEST(DenseDisparity, EveryKernelBuildGivesThePortableCostsAndWinners) {
   std::vector<std::uint8_t> portable_costs;
   std::vector<std::vector<std::int32_t>> portable_winners;
   run(detail::portable_dense_kernels(), portable_costs, portable_winners);
+  // The definition, by brute force: best = the least cost (smallest disparity on ties) over
+  // d <= x - first_x, second = the least cost with |d - best| > 1.
+  for (int x = 6; x <= width - 7; ++x) {
+    int best = 0;
+    for (int d = 1; d <= std::min(disparities - 1, x - 6); ++d) {
+      if (aggregated[static_cast<std::size_t>(d * width + x)] < aggregated[static_cast<std::size_t>(best * width + x)]) best = d;
+    }
+    int second = 0xFFFF;
+    for (int d = 0; d <= std::min(disparities - 1, x - 6); ++d) {
+      if (std::abs(d - best) > 1) second = std::min<int>(second, aggregated[static_cast<std::size_t>(d * width + x)]);
+    }
+    const auto column = static_cast<std::size_t>(x);
+    ASSERT_EQ(portable_winners[2][column], best) << x;
+    ASSERT_EQ(portable_winners[0][column], aggregated[static_cast<std::size_t>(best * width + x)]) << x;
+    ASSERT_EQ(portable_winners[1][column], second) << x;
+  }
   for (const detail::DenseKernels& kernels : detail::supported_dense_kernels()) {
     std::vector<std::uint8_t> costs;
     std::vector<std::vector<std::int32_t>> winners;

@@ -83,10 +83,10 @@ ViewComparison compare(const core::DepthScan& scan, const core::DepthScan& truth
   return result;
 }
 
-class SimulatedLabView : public ::testing::Test {
+class SimulatedView : public ::testing::Test {
  protected:
-  SimulatedLabView()
-      : world_(load_lab()),
+  explicit SimulatedView(const char* world_path)
+      : world_(load(world_path)),
         renderer_(world_, config_.camera, config_.sim, static_cast<std::uint64_t>(config_.run.seed)),
         calibration_(calibration_from_config(config_.camera)),
         mount_{config_.camera.mount_x_m, config_.camera.mount_y_m, config_.camera.mount_height_m,
@@ -100,10 +100,10 @@ class SimulatedLabView : public ::testing::Test {
     truth_scanner_.allocate(truth_);
   }
 
-  static host_sim::World load_lab() {
-    const host_sim::WorldLoad load = host_sim::load_world(test::source_path("config/worlds/lab.yaml"));
-    EXPECT_TRUE(load.ok()) << load.error_text();
-    return load.world;
+  static host_sim::World load(const char* world_path) {
+    const host_sim::WorldLoad loaded = host_sim::load_world(test::source_path(world_path));
+    EXPECT_TRUE(loaded.ok()) << loaded.error_text();
+    return loaded.world;
   }
 
   ViewComparison look(double x_m, double y_m, double heading_deg, double pan_deg, std::uint32_t frame_index) {
@@ -134,6 +134,16 @@ class SimulatedLabView : public ::testing::Test {
   cv::Mat truth_disparity_;
   core::DepthScan scan_;
   core::DepthScan truth_;
+};
+
+class SimulatedLabView : public SimulatedView {
+ protected:
+  SimulatedLabView() : SimulatedView("config/worlds/lab.yaml") {}
+};
+
+class SimulatedOfficeView : public SimulatedView {
+ protected:
+  SimulatedOfficeView() : SimulatedView("config/worlds/office.yaml") {}
 };
 
 // Views of textured surfaces (brick wall, bookcases, tables, the tiled floor): the scan must
@@ -177,6 +187,22 @@ TEST_F(SimulatedLabView, NoPhantomObstaclesAroundTheStartPose) {
   }
   EXPECT_LE(phantoms, columns * 3 / 100);
   EXPECT_EQ(near_obstacles, 0);
+}
+
+// The office corridor's walls are blank (contrast 0.2: no disparity). Across the corridor,
+// along it and into an office door: no column may report free space through a wall.
+TEST_F(SimulatedOfficeView, NoFreeSpaceThroughBlankWalls) {
+  struct View {
+    double x, y, heading, pan;
+  };
+  const View views[] = {{4.0, 5.1, 90.0, 0.0}, {4.0, 5.1, -90.0, 0.0}, {10.0, 5.1, 0.0, 0.0},
+                        {10.0, 5.1, 60.0, 0.0}, {12.0, 5.0, 100.0, 0.0}, {20.0, 5.3, -120.0, 0.0}};
+  std::uint32_t frame = 0;
+  for (const View& view : views) {
+    const ViewComparison result = look(view.x, view.y, view.heading, view.pan, frame++);
+    EXPECT_LE(result.missed_walls, result.columns * 2 / 100) << "view " << frame - 1;
+    EXPECT_LE(result.near_phantoms, result.columns * 2 / 100) << "view " << frame - 1;
+  }
 }
 
 }  // namespace
