@@ -136,12 +136,10 @@ bool OccupancyGrid::grid_coordinates(double start_x, double start_y, double end_
 
 namespace {
 
-// Exact cell traversal (Amanatides and Woo) over the cells the segment crosses, in order, from
-// its start cell up to but not including its end cell; pass(cell) for those whose centre lies
-// within half a cell of the ray's line. An integer line walk between the two rounded end
-// cells strays up to half a cell from the true ray, far enough to clear the corner cell of a
-// thin obstacle beside a door the ray went through; and a cell the ray only clips at a corner
-// is mostly something else (the rim of a pillar, the end of a door jamb), so it is not missed.
+// Exact cell traversal (Amanatides and Woo): calls pass(cell) for every cell the segment
+// crosses, in order, from its start cell up to but not including its end cell. An integer
+// line walk between the two end cells strays up to half a cell from the true ray, far enough
+// to clear the corner cell of a thin obstacle beside a door the ray went through.
 template <typename Pass>
 void walk_cells(const GridSegment& segment, Pass&& pass) {
   int x = static_cast<int>(std::floor(segment.x0));
@@ -158,15 +156,9 @@ void walk_cells(const GridSegment& segment, Pass&& pass) {
   const double delta_y = dy != 0.0 ? std::abs(1.0 / dy) : kNever;
   double next_x = dx != 0.0 ? (step_x > 0 ? x + 1.0 - segment.x0 : segment.x0 - x) * delta_x : kNever;
   double next_y = dy != 0.0 ? (step_y > 0 ? y + 1.0 - segment.y0 : segment.y0 - y) * delta_y : kNever;
-  // |cross(direction, centre - start)| / |direction| <= 0.5, squared to avoid the root.
-  const double length_squared = dx * dx + dy * dy;
-  const auto near_centre = [&](int cell_x, int cell_y) {
-    const double cross = dx * (cell_y + 0.5 - segment.y0) - dy * (cell_x + 0.5 - segment.x0);
-    return 4.0 * cross * cross <= length_squared;
-  };
   // Exactly |end_x - x| + |end_y - y| steps, so rounding can never walk past the end cell.
   while (x != end_x || y != end_y) {
-    if (near_centre(x, y)) pass(x, y);
+    pass(x, y);
     const bool along_x = y == end_y || (x != end_x && next_x < next_y);
     if (along_x) {
       x += step_x;

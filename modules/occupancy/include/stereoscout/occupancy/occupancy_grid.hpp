@@ -6,8 +6,7 @@
 // floor in its first metre or so (the column's floor_visible_from_m: a 0.6 m high camera
 // with a 62 deg vertical field of view), where a low box or a table edge is invisible. So:
 //   - the ray starts where the column's floor becomes visible; every cell it crosses from
-//     there (exact traversal) with its centre within half a cell of the ray's line (not the
-//     cells it only clips) gets log_odds_miss, except the cells where another column of
+//     there (exact traversal) gets log_odds_miss, except the cells where another column of
 //     the same scan ends on an obstacle: the hit wins (a thin poster beside a door fills a
 //     sliver of its cell, and the rays through the door cross the rest of it);
 //   - an obstacle column's end cell gets log_odds_hit (an obstacle nearer than the visible
