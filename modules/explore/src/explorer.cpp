@@ -173,18 +173,13 @@ void Explorer::finish_exploring(const ExploreInput& input, FinishReason reason) 
 void Explorer::goal_failed(const ExploreInput& input) {
   plan_.clear();
   if (state_ == ExploreState::returning) {
-    if (params_.explore.pan_at_goal && !fresh_look_) {
-      ++counters_.looks_before_giving_up;  // the way back may be blocked by a passer-by's trace
-      return_after_look_ = true;
-      keep_progress_after_look_ = false;
-      begin_look(input);
-      return;
-    }
-    // Failed right after a look from here: a passer-by may still stand in the only door, so
-    // try again from a new look, up to goal_failures_before_blacklist times.
+    // No way back, or no progress on it: a passer-by may stand in the only door, so look and
+    // try again, up to goal_failures_before_blacklist failures in all (a stuck return that
+    // replans after every look must end too).
     ++counters_.return_failures;
     if (params_.explore.pan_at_goal && counters_.return_failures < static_cast<std::uint64_t>(
                                                                        params_.explore.goal_failures_before_blacklist)) {
+      ++counters_.looks_before_giving_up;
       return_after_look_ = true;
       keep_progress_after_look_ = false;
       begin_look(input);

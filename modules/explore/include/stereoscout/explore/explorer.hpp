@@ -63,7 +63,7 @@ struct ExploreCounters {
   std::uint64_t safety_stops = 0;
   std::uint64_t emergency_stop_ticks = 0;
   std::uint64_t looks = 0;
-  std::uint64_t return_failures = 0;  // no way back right after a look; given up at goal_failures_before_blacklist
+  std::uint64_t return_failures = 0;  // no way back or no progress on it; given up at goal_failures_before_blacklist
   std::uint64_t looks_before_giving_up = 0;  // no goal, or no way back: one more look first
 };
 
