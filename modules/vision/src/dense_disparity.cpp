@@ -48,7 +48,6 @@ DenseDisparityMatcher::DenseDisparityMatcher(const DenseDisparityParams& params,
   best_disparity_.resize(static_cast<std::size_t>(width_));
   right_best_cost_.resize(static_cast<std::size_t>(width_));
   right_best_disparity_.resize(static_cast<std::size_t>(width_));
-  behind_cost_.resize(static_cast<std::size_t>(width_));
   kernels_ = detail::fastest_dense_kernels(params.allow_simd);
   gradient_integral_.resize(static_cast<std::size_t>(width_ + 1) * static_cast<std::size_t>(height_ + 1));
 }
@@ -123,7 +122,6 @@ void DenseDisparityMatcher::find_winners() {
   buffers.best_disparity = best_disparity_.data();
   buffers.right_best_cost = right_best_cost_.data();
   buffers.right_best_disparity = right_best_disparity_.data();
-  buffers.behind_cost = behind_cost_.data();
   kernels_.winners(buffers);
 }
 

@@ -126,10 +126,8 @@ STEREOSCOUT_KERNEL_BODY void box_sum_body(const std::uint16_t* column_sums, std:
   }
 }
 
-// One pass over the disparities, ascending; only a strictly lower cost replaces a winner, so
-// ties go to the smaller disparity. The best non-adjacent cost (|d - best| > 1) comes along:
-// when d becomes the best, it is the least cost at d' <= d - 2 (kept as a running minimum two
-// disparities behind); while d stays the best, later disparities from d + 2 on are added.
+// Disparities ascend, and only a strictly lower cost replaces a winner, so ties go to the
+// smaller disparity.
 STEREOSCOUT_KERNEL_BODY void winners_body(const WinnerBuffers& b) {
   constexpr std::uint16_t kNoCost = 0xFFFF;
   const auto width = static_cast<std::size_t>(b.width);
@@ -138,32 +136,17 @@ STEREOSCOUT_KERNEL_BODY void winners_body(const WinnerBuffers& b) {
   std::fill(b.best_disparity, b.best_disparity + width, std::int16_t{0});
   std::fill(b.right_best_cost, b.right_best_cost + width, kNoCost);
   std::fill(b.right_best_disparity, b.right_best_disparity + width, std::int16_t{-1});
-  std::fill(b.behind_cost, b.behind_cost + width, kNoCost);
   std::uint16_t* __restrict best_cost = b.best_cost;
-  std::uint16_t* __restrict second = b.second_cost;
-  std::uint16_t* __restrict behind = b.behind_cost;  // least cost at d' <= d - 2
   std::int16_t* __restrict best_disparity = b.best_disparity;
   std::uint16_t* __restrict right_cost = b.right_best_cost;
   std::int16_t* __restrict right_disparity = b.right_best_disparity;
   for (int d = 0; d < b.disparities; ++d) {
     const std::uint16_t* costs = b.aggregated + static_cast<std::size_t>(d) * width;
-    const std::uint16_t* two_back = d >= 2 ? costs - 2 * width : nullptr;
     const auto disparity = static_cast<std::int16_t>(d);
     // Left pixel x searches d <= x - first_x.
-    const int first = b.first_x + d;
-    if (two_back != nullptr) {
-      for (int x = first; x <= b.last_x; ++x) {
-        behind[x] = two_back[x] < behind[x] ? two_back[x] : behind[x];
-      }
-    }
-    for (int x = first; x <= b.last_x; ++x) {
-      const std::uint16_t cost = costs[x];
-      const bool better = cost < best_cost[x];
-      // Not adjacent to the current best: d - best > 1 (d only grows, so d >= best).
-      const bool far = disparity - best_disparity[x] > 1;
-      const std::uint16_t kept_second = far && cost < second[x] ? cost : second[x];
-      second[x] = better ? behind[x] : kept_second;
-      best_cost[x] = better ? cost : best_cost[x];
+    for (int x = b.first_x + d; x <= b.last_x; ++x) {
+      const bool better = costs[x] < best_cost[x];
+      best_cost[x] = better ? costs[x] : best_cost[x];
       best_disparity[x] = better ? disparity : best_disparity[x];
     }
     // Right pixel xr pairs with left pixel xr + d.
@@ -172,6 +155,20 @@ STEREOSCOUT_KERNEL_BODY void winners_body(const WinnerBuffers& b) {
       const bool better = shifted[xr] < right_cost[xr];
       right_cost[xr] = better ? shifted[xr] : right_cost[xr];
       right_disparity[xr] = better ? disparity : right_disparity[xr];
+    }
+  }
+  const std::int16_t* __restrict best = b.best_disparity;
+  std::uint16_t* __restrict second = b.second_cost;
+  for (int d = 0; d < b.disparities; ++d) {
+    const std::uint16_t* costs = b.aggregated + static_cast<std::size_t>(d) * width;
+    const auto disparity = static_cast<std::int16_t>(d);
+    for (int x = b.first_x + d; x <= b.last_x; ++x) {
+      // |d - best| > 1 with signed 16-bit compares (SSE2 has no unsigned ones).
+      const auto gap = static_cast<std::int16_t>(disparity - best[x]);
+      const int far = static_cast<int>(gap > 1) | static_cast<int>(gap < -1);
+      // kNoCost where adjacent: an OR with all ones, so the load is unconditional (vectorises).
+      const auto masked = static_cast<std::uint16_t>(costs[x] | static_cast<std::uint16_t>(far - 1));
+      second[x] = masked < second[x] ? masked : second[x];
     }
   }
 }
@@ -246,7 +243,7 @@ __attribute__((target("avx2,popcnt"))) void census_costs_avx2_table(const std::u
 
 // The same with AVX-512: eight censuses to a register and the popcount instruction for
 // 64-bit lanes (VPOPCNTQ), narrowed to bytes in pixel order.
-#define STEREOSCOUT_AVX512_TARGET "avx512f,avx512bw,avx512vl,avx512vpopcntdq,avx2,popcnt,prefer-vector-width=512"
+#define STEREOSCOUT_AVX512_TARGET "avx512f,avx512bw,avx512vl,avx512vpopcntdq,avx2,popcnt"
 STEREOSCOUT_DEFINE_KERNELS(avx512, __attribute__((target(STEREOSCOUT_AVX512_TARGET))))
 
 __attribute__((target(STEREOSCOUT_AVX512_TARGET))) void census_costs_avx512_popcount(const std::uint64_t* left,

@@ -194,10 +194,9 @@ TEST(DenseDisparity, EveryKernelBuildGivesThePortableCostsAndWinners) {
     std::vector<std::int16_t> best_d(best.size());
     std::vector<std::uint16_t> right_best(best.size());
     std::vector<std::int16_t> right_best_d(best.size());
-    std::vector<std::uint16_t> behind(best.size());
     detail::WinnerBuffers buffers{aggregated.data(), width,         disparities,        6,
                                   width - 7,         best.data(),   second.data(),      best_d.data(),
-                                  right_best.data(), right_best_d.data(), behind.data()};
+                                  right_best.data(), right_best_d.data()};
     kernels.winners(buffers);
     winners = {{best.begin(), best.end()},
                {second.begin(), second.end()},

@@ -95,7 +95,6 @@ class DenseDisparityMatcher {
   std::vector<std::int16_t> best_disparity_;
   std::vector<std::uint16_t> right_best_cost_;
   std::vector<std::int16_t> right_best_disparity_;
-  std::vector<std::uint16_t> behind_cost_;
   detail::DenseKernels kernels_;
   std::vector<std::int32_t> gradient_integral_;  // (width + 1) x (height + 1)
   SpeckleFilter speckle_filter_;

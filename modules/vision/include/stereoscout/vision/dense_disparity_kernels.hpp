@@ -26,7 +26,6 @@ struct WinnerBuffers {
   std::int16_t* best_disparity = nullptr;
   std::uint16_t* right_best_cost = nullptr;
   std::int16_t* right_best_disparity = nullptr;
-  std::uint16_t* behind_cost = nullptr;  // scratch, width entries
 };
 
 struct DenseKernels {
