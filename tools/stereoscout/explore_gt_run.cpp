@@ -20,9 +20,9 @@ namespace stereoscout::cli {
 namespace {
 
 // Forward-maps the right image's ground-truth depth to a disparity map referenced to the left
-// image, as the dense matcher would produce it (nearest surface wins where two land on one pixel).
-// The disparities the dense matcher could give: none above its largest disparity nor in the
-// left image's unmatched right border (ObstacleScanParams), so the scan sees what the stack's does.
+// image, as the dense matcher would produce it: the nearest surface wins where two land on one
+// pixel, and there is no disparity above the matcher's largest nor in its unmatched right
+// border (ObstacleScanParams), so the scan sees what the stack's does.
 void disparity_from_depth(const cv::Mat& depth_right, double focal_baseline, const vision::ObstacleScanParams& limits,
                           cv::Mat& disparity_left) {
   const int last_matched_left = depth_right.cols - 1 - limits.unmatched_border_px;
