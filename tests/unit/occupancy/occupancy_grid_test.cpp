@@ -242,7 +242,10 @@ TEST(OccupancyGrid, AHitWinsOverTheMissesOfTheSameScan) {
 
 // A 2 cm board hangs across half of a 0.9 m door in a wall; views from the corridor, through
 // the door and at the board, must not clear the board's end cell. Rays are cast against the
-// true geometry (wall line y = 1.0 with a door x in [0, 0.9); the board covers x in [0, 0.45)).
+// true geometry (wall line y = 1.0 with a door x in [0, 0.9); the board covers x in [0, 0.45)),
+// 640 columns over the camera's 77 deg facing north, the robot passing the door diagonally.
+// The integer line walk between rounded end cells (before 6d39498) cleared the board's end
+// cell on this path.
 TEST(OccupancyGrid, RaysThroughADoorDoNotClearTheThinBoardBesideIt) {
   GridGeometry geometry;
   geometry.width_cells = 60;
@@ -254,10 +257,12 @@ TEST(OccupancyGrid, RaysThroughADoorDoNotClearTheThinBoardBesideIt) {
   constexpr double kWallY = 0.98;  // the board's face, in the cell row y in [0.9, 1.0)
   constexpr double kRoomDepth = 2.5;
   for (int view = 0; view < 40; ++view) {
-    const core::Pose2 pose{-1.2 + 0.06 * view, -0.6 + 0.01 * view, 0.0};
+    const core::Pose2 pose{-1.2 + 0.06 * view, -0.2 + 0.01 * view, 0.0};
     core::DepthScan scan;
-    for (int column = 0; column < 160; ++column) {
-      const double bearing = 0.2 + 2.7 * column / 160.0;  // a fan pointing north
+    constexpr int kColumns = 640;
+    constexpr double kFieldOfView = 1.35;
+    for (int column = 0; column < kColumns; ++column) {
+      const double bearing = 0.5 * (core::kPi - kFieldOfView) + kFieldOfView * column / kColumns;
       const double cx = std::cos(bearing);
       const double sy = std::sin(bearing);
       const double t_wall = (kWallY - pose.y) / sy;
