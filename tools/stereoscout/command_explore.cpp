@@ -73,6 +73,7 @@ int run_explore(int argc, char** argv) {
   context.world = &setup.world;
   context.has_collisions = true;
   context.collisions = board.simulator().collision_count();
+  context.collision_events = board.simulator().collision_event_count();
   context.person_contacts = board.simulator().person_contact_count();
   context.distance_m = board.simulator().distance_travelled_m();
   context.log_file = record ? "sensors.log" : "";

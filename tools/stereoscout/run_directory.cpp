@@ -213,6 +213,9 @@ void write_counters(report::JsonWriter& json, const stack::Stack& stack) {
       .unsigned_integer("plan_failures", e.plan_failures)
       .unsigned_integer("replans", e.replans)
       .unsigned_integer("safety_stops", e.safety_stops)
+      .unsigned_integer("stalls", e.stalls)
+      .unsigned_integer("contact_cells_recorded", stack.explorer().contacts().recorded())
+      .unsigned_integer("contact_cells_held", stack.explorer().contacts().held())
       .unsigned_integer("looks", e.looks)
       .end_object();
   const slam::FilterCounters& f = stack.filter().counters();
@@ -266,9 +269,11 @@ std::string report_json(const stack::Stack& stack, const core::SystemConfig& con
   optional_number(json, "odometry_ate_rmse_m", score.odometry_ate_rmse_m);
   optional_number(json, "map_agreement", score.map_agreement);
   if (context.has_collisions) {
-    json.unsigned_integer("collisions", context.collisions).unsigned_integer("person_contacts", context.person_contacts);
+    json.unsigned_integer("collisions", context.collisions)
+        .unsigned_integer("collision_events", context.collision_events)
+        .unsigned_integer("person_contacts", context.person_contacts);
   } else {
-    json.null("collisions").null("person_contacts");
+    json.null("collisions").null("collision_events").null("person_contacts");
   }
   json.unsigned_integer("updates", stack.counters().updates)
       .unsigned_integer("landmarks", score.landmarks)

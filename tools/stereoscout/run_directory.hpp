@@ -22,6 +22,7 @@ struct RunContext {
   const host_sim::World* world = nullptr;      // ground truth for coverage and map agreement
   bool has_collisions = false;                 // the simulator counts them
   std::uint64_t collisions = 0;
+  std::uint64_t collision_events = 0;
   std::uint64_t person_contacts = 0;
   double distance_m = 0.0;                     // driven (simulator), 0 if unknown
   double wall_time_s = 0.0;

@@ -40,6 +40,8 @@ Explorer::Explorer(const ExploreParams& params)
       goal_value_(params),
       memory_(static_cast<std::size_t>(params.explore.goal_memory), params.explore.visited_goal_radius_m,
               params.explore.goal_failures_before_blacklist),
+      stall_(params.explore),
+      contacts_(params.explore, params.max_width, params.max_height),
       planner_(params),
       follower_(params),
       plan_(static_cast<std::size_t>(params.explore.max_plan_waypoints)) {}
@@ -48,6 +50,7 @@ Eigen::Vector2i Explorer::cell_of(const core::Pose2& pose) const { return map_.g
 
 ExploreOutput Explorer::step(const ExploreInput& input) {
   if (!started_) start(input);
+  stalled_ = stall_.stalled(input.time_s, position_of(input.pose));
   ExploreOutput output;
   if (input.emergency_stop) {
     // Halt within this very tick: zero velocity, pan held where it is; the state is kept so
@@ -56,6 +59,7 @@ ExploreOutput Explorer::step(const ExploreInput& input) {
     output.pan_target_rad = input.pan_rad;
     output.state = state_;
     rebuild_needed_ = rebuild_needed_ || input.grid_updated;
+    stall_.commanded(input.time_s, position_of(input.pose), 0.0);
     return output;
   }
   if (input.grid_updated || rebuild_needed_) rebuild(input);
@@ -70,6 +74,7 @@ ExploreOutput Explorer::step(const ExploreInput& input) {
   if (state_ == ExploreState::drive || state_ == ExploreState::returning) drive_step(input, output);
   output.pan_target_rad = pan_target_rad_;
   output.state = state_;
+  stall_.commanded(input.time_s, position_of(input.pose), output.drive.linear_mps);
   return output;
 }
 
@@ -89,7 +94,9 @@ void Explorer::rebuild(const ExploreInput& input) {
   rebuild_needed_ = false;
   const Eigen::Vector2d extra =
       state_ == ExploreState::returning ? position_of(start_pose_) : position_of(input.pose);
-  map_.rebuild(input.grid, position_of(input.pose), extra);
+  planning_grid_ = contacts_.stamp(input.grid, input.time_s);
+  planning_on_copy_ = planning_grid_.cells != input.grid.cells;
+  map_.rebuild(planning_grid_, position_of(input.pose), extra);
   ++counters_.map_rebuilds;
   if (state_ == ExploreState::drive || state_ == ExploreState::returning) check_plan(input);
 }
@@ -267,28 +274,43 @@ void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
     goal_failed(input);
     return;
   }
-  if (follow.command.linear_mps > 0.0 && !stretch_is_clear(input.grid, input.pose)) {
+  if (stalled_) {
+    // Pushing against something no view showed: keep its cells and plan around them.
+    ++counters_.stalls;
+    contacts_.record(map_.grid(), input.pose, params_.robot_radius_m, input.time_s);
+    stop_and_look(input, output, 0.0);
+    return;
+  }
+  // The current grid, with the contact cells when there are any (stamped at the last rebuild,
+  // which follows every grid update).
+  const GridView& grid = planning_on_copy_ ? planning_grid_ : input.grid;
+  if (follow.command.linear_mps > 0.0 && !stretch_is_clear(grid, input.pose)) {
     ++counters_.safety_stops;
-    rebuild_needed_ = true;  // the next tick rebuilds the map from this grid and replans
-    if (params_.explore.pan_at_goal) {
-      // A robot standing still makes no observation update (they follow motion), so what
-      // blocks it would never be looked at again: look around, then carry on (a person who
-      // has walked on is cleared by the look's views).
-      if (state_ == ExploreState::returning) {
-        return_after_look_ = true;
-      } else {
-        resume_after_look_ = true;
-      }
-      keep_progress_after_look_ = true;  // a goal blocked for stuck_timeout_s still fails
-      begin_look(input);
-      return;
-    }
-    // No translation; turning in place moves the disc into no new cell, and lets the robot
-    // face a replanned path (or a cleared view) instead of standing still for ever.
-    output.drive.angular_rad_s = follow.command.angular_rad_s;
+    stop_and_look(input, output, follow.command.angular_rad_s);
     return;
   }
   output.drive = follow.command;
+}
+
+// Stops, and replans from a rebuilt map on the next tick. With pan_at_goal it looks around
+// first: a robot standing still makes no observation update (they follow motion), so what
+// blocks it would never be looked at again (a person who has walked on is cleared by the
+// look's views); then it carries on to the same goal (or the start) on a new plan. Without a
+// pan unit it turns in place at `turn_rad_s`, which moves the disc into no new cell and lets
+// it face a replanned path (or a cleared view) instead of standing still for ever.
+void Explorer::stop_and_look(const ExploreInput& input, ExploreOutput& output, double turn_rad_s) {
+  rebuild_needed_ = true;
+  if (params_.explore.pan_at_goal) {
+    if (state_ == ExploreState::returning) {
+      return_after_look_ = true;
+    } else {
+      resume_after_look_ = true;
+    }
+    keep_progress_after_look_ = true;  // a goal blocked for stuck_timeout_s still fails
+    begin_look(input);
+    return;
+  }
+  output.drive.angular_rad_s = turn_rad_s;
 }
 
 bool Explorer::disc_is_clear(const GridView& grid, const Eigen::Vector2d& centre, const Eigen::Vector2d& robot) const {

@@ -77,13 +77,16 @@ void Simulator::integrate(double dt_s) {
     const double travel = command_.linear_mps * dt_s;
     const core::Pose2 next{pose_.x + travel * std::cos(heading), pose_.y + travel * std::sin(heading),
                            core::wrap_angle(pose_.theta + turn)};
-    if (collides(pose_.translation(), next.translation())) {
+    const bool refused = collides(pose_.translation(), next.translation());
+    if (refused) {
       ++collisions_;
+      if (!last_step_refused_) ++collision_events_;
       command_ = core::DriveCommand{};
     } else {
       pose_ = next;
       distance_m_ += std::abs(travel);
     }
+    last_step_refused_ = refused;
   }
   count_person_contacts();
 }

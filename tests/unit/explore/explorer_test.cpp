@@ -90,6 +90,35 @@ TEST(Explorer, StopsBeforeAnOccupiedCellAheadEvenBeforeTheMapIsRebuilt) {
   for (const Eigen::Vector2i& cell : explorer.plan().cells) EXPECT_NE(cell, Eigen::Vector2i(19, 30));
 }
 
+// A surface the grid does not hold (a blank wall: no disparity, its cells stay free or
+// unknown) stops the robot: it commands forward motion and the pose stands still. The
+// explorer notices within two stall windows, keeps the cell it pushes against as occupied for
+// planning, and the next plan leads around it.
+TEST(Explorer, AStallMarksTheContactAndThePlanLeadsAroundIt) {
+  Corridor scene;
+  const ExploreParams params = no_look_params(100, 60);
+  Explorer explorer(params);
+  ASSERT_GT(explorer.step(input_at(scene.grid.view(), 1.52, 3.0, 0.0, 0.0, true)).drive.linear_mps, 0.0);
+  double time_s = 0.0;
+  while (explorer.counters().stalls == 0 && time_s < 5.0) {
+    time_s += 0.05;
+    explorer.step(input_at(scene.grid.view(), 1.52, 3.0, 0.0, time_s, false));
+  }
+  ASSERT_EQ(explorer.counters().stalls, 1U);
+  EXPECT_LE(time_s, 2.0 * params.explore.stall_window_s + 0.1);
+  EXPECT_EQ(explorer.contacts().held(), 3U);
+  const ExploreOutput next = explorer.step(input_at(scene.grid.view(), 1.52, 3.0, 0.0, time_s + 0.05, false));
+  EXPECT_EQ(explorer.navigation_map().grid().at(19, 30), CellState::occupied);
+  EXPECT_EQ(scene.grid.view().at(19, 30), CellState::free);  // the grid itself is not changed
+  EXPECT_EQ(next.state, ExploreState::drive);
+  ASSERT_FALSE(explorer.plan().empty());
+  for (std::size_t k = 1; k < explorer.plan().cells.size(); ++k) {  // after the robot's own cell
+    const Eigen::Vector2i& cell = explorer.plan().cells[k];
+    EXPECT_TRUE(explorer.navigation_map().passable(cell.x(), cell.y())) << k;
+    EXPECT_NE(cell, Eigen::Vector2i(19, 30));
+  }
+}
+
 // Steps through a look with the pan unit reaching each target at once.
 void complete_look(Explorer& explorer, const GridView& grid, double time_s) {
   for (const double pan_deg : {0.0, 90.0, 180.0, -90.0, 0.0}) {

@@ -14,7 +14,9 @@
 // checked against the cells the current grid holds as occupied, and the robot stops if the
 // disc would touch one it does not already touch. With pan_at_goal it then looks around
 // (a standing robot makes no observation update, so nothing would clear a person's trace)
-// and carries on to the same goal on a new plan.
+// and carries on to the same goal on a new plan. A robot that commands forward motion but
+// does not move has touched something the camera did not see (contact_memory.hpp): it stops,
+// the cells just beyond its rim ahead count as occupied for planning, and it replans.
 //
 // All buffers are allocated by the constructor; step() allocates nothing.
 
@@ -22,6 +24,7 @@
 
 #include "stereoscout/core/geometry.hpp"
 #include "stereoscout/core/messages.hpp"
+#include "stereoscout/explore/contact_memory.hpp"
 #include "stereoscout/explore/goal_value.hpp"
 #include "stereoscout/explore/grid_view.hpp"
 #include "stereoscout/explore/navigation_map.hpp"
@@ -61,6 +64,7 @@ struct ExploreCounters {
   std::uint64_t replans = 0;           // plan blocked after an observation update
   std::uint64_t stuck = 0;
   std::uint64_t safety_stops = 0;
+  std::uint64_t stalls = 0;            // forward motion commanded, none made: a contact
   std::uint64_t emergency_stop_ticks = 0;
   std::uint64_t looks = 0;
   std::uint64_t return_failures = 0;  // no way back or no progress on it; given up at goal_failures_before_blacklist
@@ -80,6 +84,7 @@ class Explorer {
   const ExploreCounters& counters() const { return counters_; }
   const NavigationMap& navigation_map() const { return map_; }
   const GoalValue& goal_value() const { return goal_value_; }
+  const ContactMemory& contacts() const { return contacts_; }
 
  private:
   void start(const ExploreInput& input);
@@ -93,6 +98,7 @@ class Explorer {
   void finish_look(const ExploreInput& input);
   void look_step(const ExploreInput& input, ExploreOutput& output);
   void drive_step(const ExploreInput& input, ExploreOutput& output);
+  void stop_and_look(const ExploreInput& input, ExploreOutput& output, double turn_rad_s);
   bool stretch_is_clear(const GridView& grid, const core::Pose2& pose) const;
   bool disc_is_clear(const GridView& grid, const Eigen::Vector2d& centre, const Eigen::Vector2d& robot) const;
   Eigen::Vector2i cell_of(const core::Pose2& pose) const;
@@ -101,6 +107,11 @@ class Explorer {
   NavigationMap map_;
   GoalValue goal_value_;
   GoalMemory memory_;
+  StallDetector stall_;
+  ContactMemory contacts_;
+  GridView planning_grid_;  // the input grid with the contact cells occupied (last rebuild)
+  bool planning_on_copy_ = false;  // planning_grid_ is the contact memory's stamped copy
+  bool stalled_ = false;           // this tick
   PathPlanner planner_;
   PathFollower follower_;
   Plan plan_;

@@ -9,7 +9,8 @@
 // robot's limits (paper: 0.12 m/s, 8 deg/s), no acceleration limits. Collision: if the next
 // integration step would bring the robot's disc into an obstacle of its height band, or into
 // a person it does not touch where it stands, the robot stays, its command is zeroed and
-// collision_count() goes up by one; a new command lets it move again. People walk their
+// collision_count() goes up by one (collision_event_count() too when the step before was
+// not refused: a new contact); a new command lets it move again. People walk their
 // loops regardless of the robot: a person who walks into the robot (stopped, turning, or
 // overtaken from behind) is the person's collision, not the robot's; each such contact
 // (start of an overlap) is counted in person_contact_count(), and lasts until they walk on.
@@ -68,6 +69,7 @@ class Simulator {
   const core::Pose2& odometry_pose() const { return odometry_pose_; }
   double pan_rad() const { return pan_rad_; }
   std::uint64_t collision_count() const { return collisions_; }
+  std::uint64_t collision_event_count() const { return collision_events_; }
   std::uint64_t person_contact_count() const { return person_contacts_; }
   std::uint64_t odometry_dropped() const { return odometry_queue_.overwritten(); }
   double distance_travelled_m() const { return distance_m_; }
@@ -102,6 +104,8 @@ class Simulator {
   double pan_rad_ = 0.0;
   double pan_target_rad_ = 0.0;
   std::uint64_t collisions_ = 0;
+  std::uint64_t collision_events_ = 0;
+  bool last_step_refused_ = false;
   std::uint64_t person_contacts_ = 0;
   std::vector<std::uint8_t> person_in_contact_;  // one per person, sized at construction
   double distance_m_ = 0.0;

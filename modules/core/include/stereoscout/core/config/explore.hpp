@@ -26,6 +26,12 @@ struct ExploreConfig {
   double turn_in_place_deg = 25.0;
   double safety_check_distance_m = 0.5;
   double stuck_timeout_s = 40.0;
+  double stall_window_s = 1.0;
+  double stall_min_commanded_m = 0.04;
+  double stall_progress_fraction = 0.25;
+  double contact_arc_deg = 25.0;
+  int contact_memory = 256;
+  double contact_hold_s = 600.0;
   double time_limit_s = 3600.0;
   bool pan_at_goal = true;
   bool return_to_start = true;
@@ -54,6 +60,12 @@ inline void describe(ConfigVisitor& v, ExploreConfig& c) {
   v.number("turn_in_place_deg", c.turn_in_place_deg, {1.0, 180.0, "deg", "The follower turns in place while the lookahead point is farther off the heading than this."});
   v.number("safety_check_distance_m", c.safety_check_distance_m, {0.05, 5.0, "m", "Before every command the next stretch of path this long is checked against occupied cells."});
   v.number("stuck_timeout_s", c.stuck_timeout_s, {1.0, 100000.0, "s", "A goal fails when the robot got no closer to it for this long."});
+  v.number("stall_window_s", c.stall_window_s, {0.1, 60.0, "s", "Stall detector: the commanded forward travel and the travel the pose shows (odometry between updates) are compared over windows this long."});
+  v.number("stall_min_commanded_m", c.stall_min_commanded_m, {0.001, 10.0, "m", "Stall detector: a window is judged only when at least this much forward travel was commanded in it."});
+  v.number("stall_progress_fraction", c.stall_progress_fraction, {0.0, 1.0, "", "Stall detector: the robot is stalled (pushing against something it did not see) when it moved less than this fraction of the commanded travel."});
+  v.number("contact_arc_deg", c.contact_arc_deg, {0.0, 90.0, "deg", "A stall marks the cells just beyond the robot's rim straight ahead and this far to either side as occupied for planning."});
+  v.integer_field("contact_memory", c.contact_memory, {1, 100000, "cells", "Contact cells remembered (fixed list; when full, new ones are counted and forgotten)."});
+  v.number("contact_hold_s", c.contact_hold_s, {1.0, 1e7, "s", "A contact cell is forgotten after this long, or earlier when the grid sees its cell free after holding it unknown or occupied (a person who walked on)."});
   v.number("time_limit_s", c.time_limit_s, {1.0, 1e7, "s", "Exploration ends after this long (then returns to start if configured)."});
   v.boolean("pan_at_goal", c.pan_at_goal, "Look around 360 degrees on reaching each goal (paper VI).");
   v.boolean("return_to_start", c.return_to_start, "Drive back to the start pose when exploration ends.");

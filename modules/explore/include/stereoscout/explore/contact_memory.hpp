@@ -1,0 +1,95 @@
+#pragma once
+// Contacts with what the camera did not see. The robot has no bumper, and a surface without
+// texture (a blank wall, a plain pillar) gives the dense stereo no disparity: its cells stay
+// unknown, and near the robot the planner may cross unknown cells (the camera's blind zone).
+// So the robot can drive into it. Like a robot that reads its motor currents, the explorer
+// then notices that it is not moving although it commands motion (StallDetector), and marks
+// the cells just beyond its rim ahead as occupied for planning (ContactMemory), so the next
+// plan leads around them.
+//
+// StallDetector compares, over windows of stall_window_s, the forward travel commanded with
+// the travel the pose shows (the stack's pose follows odometry between updates): stalled when
+// at least stall_min_commanded_m was commanded and less than stall_progress_fraction of it
+// was travelled. Any tick without a forward command starts a new window, so turns in place
+// and looks never count.
+//
+// ContactMemory keeps contact cells in a fixed list. A contact is forgotten after
+// contact_hold_s, or as soon as the grid sees its cell free when it had held it unknown or
+// occupied at the contact: a person who stood there has walked on. (A cell the grid held free
+// at the contact is wrong in the grid, a surface it cannot see: only the time limit ends it.)
+// Both rules depend on simulated time and the grid only, so runs stay reproducible.
+
+#include <cstdint>
+#include <memory>
+
+#include "stereoscout/core/fixed_vector.hpp"
+#include "stereoscout/core/geometry.hpp"
+#include "stereoscout/explore/grid_view.hpp"
+
+namespace stereoscout::explore {
+
+class StallDetector {
+ public:
+  explicit StallDetector(const core::ExploreConfig& config);
+
+  // Call once per tick before the new command: accounts the command of the previous tick over
+  // the time since, and returns true when a window just ended stalled.
+  bool stalled(double time_s, const Eigen::Vector2d& position);
+  // The forward speed commanded at time_s from `position` (for the next call to stalled()).
+  void commanded(double time_s, const Eigen::Vector2d& position, double linear_mps);
+  void reset();
+
+ private:
+  double window_s_;
+  double min_commanded_m_;
+  double progress_fraction_;
+  bool window_open_ = false;
+  double window_start_s_ = 0.0;
+  Eigen::Vector2d window_start_position_ = Eigen::Vector2d::Zero();
+  double commanded_m_ = 0.0;
+  double last_time_s_ = 0.0;
+  double last_linear_mps_ = 0.0;
+  Eigen::Vector2d last_position_ = Eigen::Vector2d::Zero();
+};
+
+class ContactMemory {
+ public:
+  // max_width x max_height: the largest grid stamp() must copy (allocated here, at start-up).
+  ContactMemory(const core::ExploreConfig& config, int max_width, int max_height);
+
+  // Records the cells just beyond the rim of a robot of `radius_m` at `pose`: straight ahead
+  // and contact_arc_deg to either side. `grid`: the grid the robot planned on.
+  void record(const GridView& grid, const core::Pose2& pose, double radius_m, double time_s);
+  // Forgets expired and freed contacts, then returns `grid` with the contact cells occupied:
+  // a copy in the memory's own buffer, or `grid` itself when there is no contact (or it is
+  // larger than the buffer, counted). Valid until the next call.
+  GridView stamp(const GridView& grid, double time_s);
+
+  std::size_t held() const { return contacts_.size(); }
+  std::uint64_t recorded() const { return recorded_; }
+  std::uint64_t forgotten_full() const { return forgotten_full_; }  // the list was full
+  std::uint64_t freed() const { return freed_; }                    // seen free later
+  std::uint64_t expired() const { return expired_; }
+  std::uint64_t grid_too_large() const { return grid_too_large_; }
+
+ private:
+  struct Contact {
+    Eigen::Vector2d point;
+    double time_s = 0.0;
+    bool free_at_contact = false;  // the grid held the cell free when the robot touched it
+  };
+  bool keep(const Contact& contact, const GridView& grid, double time_s);
+
+  double arc_rad_;
+  double hold_s_;
+  core::FixedVector<Contact> contacts_;
+  std::unique_ptr<std::uint8_t[]> cells_;
+  std::size_t cell_capacity_;
+  std::uint64_t recorded_ = 0;
+  std::uint64_t forgotten_full_ = 0;
+  std::uint64_t freed_ = 0;
+  std::uint64_t expired_ = 0;
+  std::uint64_t grid_too_large_ = 0;
+};
+
+}  // namespace stereoscout::explore

@@ -1,0 +1,106 @@
+#include "stereoscout/explore/contact_memory.hpp"
+
+#include <cmath>
+#include <cstring>
+
+namespace stereoscout::explore {
+
+StallDetector::StallDetector(const core::ExploreConfig& config)
+    : window_s_(config.stall_window_s),
+      min_commanded_m_(config.stall_min_commanded_m),
+      progress_fraction_(config.stall_progress_fraction) {}
+
+void StallDetector::reset() {
+  window_open_ = false;
+  commanded_m_ = 0.0;
+  last_linear_mps_ = 0.0;
+}
+
+bool StallDetector::stalled(double time_s, const Eigen::Vector2d& position) {
+  if (!(last_linear_mps_ > 0.0)) {
+    // No forward command since the last tick: the next forward command opens a new window.
+    window_open_ = false;
+    last_time_s_ = time_s;
+    return false;
+  }
+  if (!window_open_) {
+    window_open_ = true;
+    window_start_s_ = last_time_s_;
+    window_start_position_ = last_position_;
+    commanded_m_ = 0.0;
+  }
+  commanded_m_ += last_linear_mps_ * std::max(0.0, time_s - last_time_s_);
+  last_time_s_ = time_s;
+  if (time_s - window_start_s_ < window_s_) return false;
+  const double travelled = (position - window_start_position_).norm();
+  const bool stall = commanded_m_ >= min_commanded_m_ && travelled < progress_fraction_ * commanded_m_;
+  window_open_ = false;
+  return stall;
+}
+
+void StallDetector::commanded(double time_s, const Eigen::Vector2d& position, double linear_mps) {
+  last_time_s_ = time_s;
+  last_position_ = position;
+  last_linear_mps_ = linear_mps;
+}
+
+ContactMemory::ContactMemory(const core::ExploreConfig& config, int max_width, int max_height)
+    : arc_rad_(core::degrees_to_radians(config.contact_arc_deg)),
+      hold_s_(config.contact_hold_s),
+      contacts_(static_cast<std::size_t>(config.contact_memory)),
+      cells_(new std::uint8_t[static_cast<std::size_t>(max_width) * static_cast<std::size_t>(max_height)]),
+      cell_capacity_(static_cast<std::size_t>(max_width) * static_cast<std::size_t>(max_height)) {}
+
+void ContactMemory::record(const GridView& grid, const core::Pose2& pose, double radius_m, double time_s) {
+  // Just beyond the rim: the surface the robot pushes against lies in that cell.
+  const double reach = radius_m + 0.5 * grid.resolution_m;
+  for (const double offset : {0.0, -arc_rad_, arc_rad_}) {
+    const double angle = pose.theta + offset;
+    const Eigen::Vector2d point = pose.translation() + reach * Eigen::Vector2d(std::cos(angle), std::sin(angle));
+    const Eigen::Vector2i cell = grid.cell_of(point);
+    const bool free = grid.contains(cell.x(), cell.y()) && grid.at(cell.x(), cell.y()) == CellState::free;
+    ++recorded_;
+    if (contacts_.emplace_back(Contact{point, time_s, free}) == nullptr) ++forgotten_full_;
+  }
+}
+
+bool ContactMemory::keep(const Contact& contact, const GridView& grid, double time_s) {
+  if (time_s - contact.time_s > hold_s_) {
+    ++expired_;
+    return false;
+  }
+  const Eigen::Vector2i cell = grid.cell_of(contact.point);
+  if (!contact.free_at_contact && grid.contains(cell.x(), cell.y()) && grid.at(cell.x(), cell.y()) == CellState::free) {
+    ++freed_;
+    return false;
+  }
+  return true;
+}
+
+GridView ContactMemory::stamp(const GridView& grid, double time_s) {
+  // Forget first (swap with the last; the order of contacts does not matter).
+  for (std::size_t i = 0; i < contacts_.size();) {
+    if (keep(contacts_[i], grid, time_s)) {
+      ++i;
+      continue;
+    }
+    contacts_[i] = contacts_[contacts_.size() - 1];
+    contacts_.pop_back();
+  }
+  if (contacts_.size() == 0) return grid;
+  const std::size_t count = static_cast<std::size_t>(grid.width) * static_cast<std::size_t>(grid.height);
+  if (count > cell_capacity_) {
+    ++grid_too_large_;
+    return grid;
+  }
+  std::memcpy(cells_.get(), grid.cells, count);
+  for (const Contact& contact : contacts_) {
+    const Eigen::Vector2i cell = grid.cell_of(contact.point);
+    if (grid.contains(cell.x(), cell.y())) cells_[grid.index(cell.x(), cell.y())] = static_cast<std::uint8_t>(CellState::occupied);
+  }
+  GridView stamped = grid;
+  stamped.cells = cells_.get();
+  return stamped;
+}
+
+}  // namespace stereoscout::explore

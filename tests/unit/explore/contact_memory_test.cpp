@@ -1,0 +1,132 @@
+// The stall detector and the contact memory: a robot that commands motion and does not move
+// has touched something its camera did not see; the cells beyond its rim are kept as
+// occupied for planning until the grid sees them free or they expire.
+#include <gtest/gtest.h>
+
+#include "stereoscout/core/allocation_counter.hpp"
+#include "stereoscout/explore/contact_memory.hpp"
+#include "test_grid.hpp"
+
+namespace stereoscout::explore {
+namespace {
+
+using testing::TestGrid;
+
+constexpr double kTick_s = 0.05;
+constexpr double kSpeed_mps = 0.12;
+
+// Drives for `duration_s` at kSpeed_mps, the pose advancing by `moved_fraction` of the command;
+// returns how many windows ended stalled.
+int drive(StallDetector& detector, double& time_s, Eigen::Vector2d& position, double duration_s, double moved_fraction) {
+  int stalls = 0;
+  for (const double end = time_s + duration_s; time_s < end - 1e-9;) {
+    stalls += detector.stalled(time_s, position) ? 1 : 0;
+    detector.commanded(time_s, position, kSpeed_mps);
+    time_s += kTick_s;
+    position.x() += moved_fraction * kSpeed_mps * kTick_s;
+  }
+  return stalls;
+}
+
+TEST(StallDetector, ARobotThatMovesAsCommandedNeverStalls) {
+  StallDetector detector{core::ExploreConfig{}};
+  double time_s = 0.0;
+  Eigen::Vector2d position(1.0, 1.0);
+  EXPECT_EQ(drive(detector, time_s, position, 30.0, 1.0), 0);
+  // Slowed down (a carpet, wheel slip) but moving: still not a stall.
+  EXPECT_EQ(drive(detector, time_s, position, 30.0, 0.5), 0);
+}
+
+TEST(StallDetector, ARobotThatDoesNotMoveStallsWithinAWindow) {
+  const core::ExploreConfig config;
+  StallDetector detector{config};
+  double time_s = 0.0;
+  Eigen::Vector2d position(1.0, 1.0);
+  drive(detector, time_s, position, 5.0, 1.0);
+  const double blocked_at = time_s;
+  int stalls = 0;
+  while (stalls == 0 && time_s < blocked_at + 10.0) stalls = drive(detector, time_s, position, kTick_s, 0.0);
+  EXPECT_EQ(stalls, 1);
+  // At most one window that started before the contact, then one whole window.
+  EXPECT_LE(time_s - blocked_at, 2.0 * config.stall_window_s + 2.0 * kTick_s);
+}
+
+TEST(StallDetector, TurningInPlaceOrStandingIsNeverAStall) {
+  StallDetector detector{core::ExploreConfig{}};
+  const Eigen::Vector2d position(1.0, 1.0);
+  for (double time_s = 0.0; time_s < 30.0; time_s += kTick_s) {
+    EXPECT_FALSE(detector.stalled(time_s, position));
+    detector.commanded(time_s, position, 0.0);
+  }
+  // A forward command too small to judge (creeping onto a pure-pursuit path).
+  for (double time_s = 30.0; time_s < 60.0; time_s += kTick_s) {
+    EXPECT_FALSE(detector.stalled(time_s, position));
+    detector.commanded(time_s, position, 0.001);
+  }
+}
+
+TEST(ContactMemory, MarksTheCellsBeyondTheRimAheadAndForgetsThemWhenSeenFree) {
+  TestGrid grid(60, 60, CellState::free);
+  grid.fill(40, 0, 60, 60, CellState::unknown);  // a blank wall from x = 4 m: never seen
+  const core::ExploreConfig config;
+  ContactMemory memory(config, 60, 60);
+  const double radius_m = 0.35;
+  // Touching it head on: centre 0.36 m before the wall.
+  memory.record(grid.view(), core::Pose2{3.64, 3.05, 0.0}, radius_m, 100.0);
+  EXPECT_EQ(memory.recorded(), 3U);
+  EXPECT_EQ(memory.held(), 3U);
+  const GridView stamped = memory.stamp(grid.view(), 101.0);
+  ASSERT_NE(stamped.cells, grid.view().cells);
+  EXPECT_EQ(stamped.at(40, 30), CellState::occupied);  // straight ahead
+  int occupied = 0;
+  for (int y = 0; y < 60; ++y) {
+    for (int x = 0; x < 60; ++x) occupied += stamped.at(x, y) == CellState::occupied ? 1 : 0;
+  }
+  EXPECT_EQ(occupied, 3);
+  // The grid itself is untouched.
+  EXPECT_EQ(grid.view().at(40, 30), CellState::unknown);
+  // Still held while the grid holds the cells unknown ...
+  memory.stamp(grid.view(), 200.0);
+  EXPECT_EQ(memory.held(), 3U);
+  // ... forgotten once it sees them free (whatever stood there has gone).
+  grid.fill(40, 0, 60, 60, CellState::free);
+  const GridView freed = memory.stamp(grid.view(), 201.0);
+  EXPECT_EQ(memory.held(), 0U);
+  EXPECT_EQ(memory.freed(), 3U);
+  EXPECT_EQ(freed.cells, grid.view().cells);  // nothing to stamp: the grid itself
+}
+
+TEST(ContactMemory, ACellTheGridHeldFreeAtTheContactIsKeptUntilItExpires) {
+  TestGrid grid(60, 60, CellState::free);  // the grid is wrong there: a surface it cannot see
+  core::ExploreConfig config;
+  config.contact_hold_s = 60.0;
+  ContactMemory memory(config, 60, 60);
+  memory.record(grid.view(), core::Pose2{3.64, 3.05, 0.0}, 0.35, 100.0);
+  EXPECT_EQ(memory.stamp(grid.view(), 150.0).at(40, 30), CellState::occupied);
+  EXPECT_EQ(memory.held(), 3U);
+  EXPECT_EQ(memory.stamp(grid.view(), 161.0).at(40, 30), CellState::free);
+  EXPECT_EQ(memory.held(), 0U);
+  EXPECT_EQ(memory.expired(), 3U);
+}
+
+TEST(ContactMemory, AFullListCountsWhatItForgetsAndNothingAllocates) {
+  TestGrid grid(60, 60, CellState::unknown);
+  core::ExploreConfig config;
+  config.contact_memory = 4;
+  ContactMemory memory(config, 60, 60);
+  const core::AllocationScope counter;
+  memory.record(grid.view(), core::Pose2{3.02, 3.05, 0.0}, 0.35, 1.0);
+  memory.record(grid.view(), core::Pose2{3.02, 3.05, 1.0}, 0.35, 2.0);
+  const GridView stamped = memory.stamp(grid.view(), 3.0);
+  EXPECT_EQ(counter.allocations(), 0U);
+  EXPECT_EQ(memory.held(), 4U);
+  EXPECT_EQ(memory.forgotten_full(), 2U);
+  EXPECT_EQ(stamped.at(34, 30), CellState::occupied);  // 0.4 m straight ahead of the first
+  // A grid larger than the buffer is used as it is (counted).
+  TestGrid large(80, 80, CellState::unknown);
+  EXPECT_EQ(memory.stamp(large.view(), 4.0).cells, large.view().cells);
+  EXPECT_EQ(memory.grid_too_large(), 1U);
+}
+
+}  // namespace
+}  // namespace stereoscout::explore
