@@ -272,6 +272,13 @@ std::string report_json(const stack::Stack& stack, const core::SystemConfig& con
     json.unsigned_integer("collisions", context.collisions)
         .unsigned_integer("collision_events", context.collision_events)
         .unsigned_integer("person_contacts", context.person_contacts);
+    json.begin_array("collision_log");
+    for (const auto& event : context.collision_log) {
+      json.begin_array();
+      for (const double value : event) json.number(nullptr, value);
+      json.end_array();
+    }
+    json.end_array();
   } else {
     json.null("collisions").null("collision_events").null("person_contacts");
   }

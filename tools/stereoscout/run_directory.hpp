@@ -5,6 +5,7 @@
 // the true pose is known), landmarks.ply, and report.json (docs/report.md) with a SHA-256 of
 // every other file, the sensor log included when it is in the directory.
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -23,6 +24,7 @@ struct RunContext {
   bool has_collisions = false;                 // the simulator counts them
   std::uint64_t collisions = 0;
   std::uint64_t collision_events = 0;
+  std::vector<std::array<double, 4>> collision_log;  // the first contacts: time s, true x, y, theta
   std::uint64_t person_contacts = 0;
   double distance_m = 0.0;                     // driven (simulator), 0 if unknown
   double wall_time_s = 0.0;

@@ -118,7 +118,8 @@ void NavigationMap::find_window(const Eigen::Vector2d& robot, const Eigen::Vecto
     y1 = std::max(y1, y);
   }
   const int travel = cells_for(params_.explore.unknown_travel_radius_m, grid_.resolution_m);
-  for (const Eigen::Vector2d& centre : {robot, extra}) {
+  const Eigen::Vector2d first = params_.explore.unknown_travel_near_robot ? robot : extra;
+  for (const Eigen::Vector2d& centre : {first, extra}) {
     const Eigen::Vector2i cell = grid_.cell_of(centre);
     x0 = std::min(x0, cell.x() - travel);
     x1 = std::max(x1, cell.x() + travel);
@@ -190,13 +191,15 @@ void NavigationMap::classify(const Eigen::Vector2d& robot, const Eigen::Vector2d
   const double safe = params_.safe_distance_m(grid_.resolution_m);
   const double preferred = std::max(params_.explore.preferred_clearance_m, lethal + 1e-6);
   const double travel2 = params_.explore.unknown_travel_radius_m * params_.explore.unknown_travel_radius_m;
+  const bool near_robot = params_.explore.unknown_travel_near_robot;
   for (int y = window_.y0; y < window_.y1; ++y) {
     for (int x = window_.x0; x < window_.x1; ++x) {
       const std::size_t i = index(x, y);
       const CellState state = grid_.at(x, y);
       const double clearance = occupied_distance_m(x, y);
       const Eigen::Vector2d centre = grid_.center(x, y);
-      const bool unknown_allowed = (centre - robot).squaredNorm() <= travel2 || (centre - extra).squaredNorm() <= travel2;
+      const bool unknown_allowed = (near_robot && (centre - robot).squaredNorm() <= travel2) ||
+                                   (centre - extra).squaredNorm() <= travel2;
       Traversability kind = Traversability::safe;
       if ((state == CellState::occupied && !under_robot(x, y)) || clearance < lethal ||
           (state == CellState::unknown && !unknown_allowed)) {

@@ -80,7 +80,10 @@ void Simulator::integrate(double dt_s) {
     const bool refused = collides(pose_.translation(), next.translation());
     if (refused) {
       ++collisions_;
-      if (!last_step_refused_) ++collision_events_;
+      if (!last_step_refused_) {
+        if (collision_events_ < kCollisionLogSize) collision_log_[collision_events_] = {time_s(), pose_};
+        ++collision_events_;
+      }
       command_ = core::DriveCommand{};
     } else {
       pose_ = next;

@@ -154,6 +154,18 @@ TEST(NavigationMap, InflatesObstaclesByTheRobotRadiusAndMargin) {
   ASSERT_TRUE(map.rebuild(unknown.view(), robot, robot));
   EXPECT_TRUE(map.passable(14, 10));   // 0.4 m from the robot
   EXPECT_FALSE(map.passable(25, 10));  // 1.5 m from the robot
+  // ... that is, near the start pose (the explorer's extra centre): away from it, an unseen
+  // blank wall within a metre of the robot is not a way through.
+  const Eigen::Vector2d start(4.0, 4.0);
+  ASSERT_TRUE(map.rebuild(unknown.view(), robot, start));
+  EXPECT_FALSE(map.passable(14, 10));
+  EXPECT_TRUE(map.passable(43, 40));
+  ExploreParams near_robot_params = params;
+  near_robot_params.explore.unknown_travel_near_robot = true;
+  NavigationMap near_robot(near_robot_params);
+  ASSERT_TRUE(near_robot.rebuild(unknown.view(), robot, start));
+  EXPECT_TRUE(near_robot.passable(14, 10));
+  EXPECT_TRUE(near_robot.passable(43, 40));
 }
 
 // A walled room, all seen, with a 0.8 m box whose inside is unknown and whose ring has a

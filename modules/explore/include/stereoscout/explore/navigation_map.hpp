@@ -47,9 +47,9 @@ class NavigationMap {
   explicit NavigationMap(const ExploreParams& params);
 
   // Rebuilds everything for `grid`. Unknown cells are passable only within
-  // unknown_travel_radius_m of `robot` or of `extra_unknown_centre` (the start pose when
-  // returning there). Returns false (and leaves an empty map) if the grid is larger than the
-  // buffers.
+  // unknown_travel_radius_m of `extra_unknown_centre` (the explorer passes the start pose),
+  // and of `robot` with unknown_travel_near_robot. Returns false (and leaves an empty map) if
+  // the grid is larger than the buffers.
   bool rebuild(const GridView& grid, const Eigen::Vector2d& robot, const Eigen::Vector2d& extra_unknown_centre);
 
   const GridView& grid() const { return grid_; }

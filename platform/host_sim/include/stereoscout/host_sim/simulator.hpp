@@ -19,6 +19,8 @@
 // the noise model of the floor under the robot (config sim.tile / sim.carpet) and integrated
 // into the odometry pose.
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -70,6 +72,14 @@ class Simulator {
   double pan_rad() const { return pan_rad_; }
   std::uint64_t collision_count() const { return collisions_; }
   std::uint64_t collision_event_count() const { return collision_events_; }
+  // Where the first kCollisionLogSize contacts happened (time and true pose), for reports.
+  struct CollisionEvent {
+    double time_s = 0.0;
+    core::Pose2 pose;
+  };
+  static constexpr std::size_t kCollisionLogSize = 32;
+  std::size_t collision_log_size() const { return std::min<std::size_t>(collision_events_, kCollisionLogSize); }
+  const CollisionEvent& collision_log(std::size_t i) const { return collision_log_[i]; }
   std::uint64_t person_contact_count() const { return person_contacts_; }
   std::uint64_t odometry_dropped() const { return odometry_queue_.overwritten(); }
   double distance_travelled_m() const { return distance_m_; }
@@ -106,6 +116,7 @@ class Simulator {
   std::uint64_t collisions_ = 0;
   std::uint64_t collision_events_ = 0;
   bool last_step_refused_ = false;
+  std::array<CollisionEvent, kCollisionLogSize> collision_log_{};
   std::uint64_t person_contacts_ = 0;
   std::vector<std::uint8_t> person_in_contact_;  // one per person, sized at construction
   double distance_m_ = 0.0;
