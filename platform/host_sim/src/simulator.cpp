@@ -77,19 +77,19 @@ void Simulator::integrate(double dt_s) {
     const double travel = command_.linear_mps * dt_s;
     const core::Pose2 next{pose_.x + travel * std::cos(heading), pose_.y + travel * std::sin(heading),
                            core::wrap_angle(pose_.theta + turn)};
-    const bool refused = collides(pose_.translation(), next.translation());
-    if (refused) {
+    if (collides(pose_.translation(), next.translation())) {
       ++collisions_;
-      if (!last_step_refused_) {
+      if (!in_contact_) {
         if (collision_events_ < kCollisionLogSize) collision_log_[collision_events_] = {time_s(), pose_};
         ++collision_events_;
       }
+      in_contact_ = true;
       command_ = core::DriveCommand{};
     } else {
       pose_ = next;
       distance_m_ += std::abs(travel);
+      in_contact_ = in_contact_ && travel == 0.0;  // a turn in place does not leave the contact
     }
-    last_step_refused_ = refused;
   }
   count_person_contacts();
 }

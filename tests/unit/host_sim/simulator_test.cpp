@@ -180,6 +180,10 @@ TEST(Simulator, DriveIntoAWallIsStoppedAndCounted) {
   ASSERT_TRUE(drive_interface.command({0.12, 0.0}).ok());
   simulator.step(30.0);
   EXPECT_EQ(simulator.collision_count(), 1U);
+  EXPECT_EQ(simulator.collision_event_count(), 1U);
+  ASSERT_EQ(simulator.collision_log_size(), 1U);
+  EXPECT_EQ(simulator.collision_log(0).pose.x, simulator.true_pose().x);
+  EXPECT_GT(simulator.collision_log(0).time_s, 13.0);  // 1.65 m at 0.12 m/s
   EXPECT_GT(simulator.true_pose().x, 10.0 - 0.35 - 0.002);
   EXPECT_LE(simulator.true_pose().x, 10.0 - 0.35);
   EXPECT_EQ(simulator.current_command().linear_mps, 0.0);
@@ -187,10 +191,16 @@ TEST(Simulator, DriveIntoAWallIsStoppedAndCounted) {
   ASSERT_TRUE(drive_interface.command({0.12, 0.0}).ok());
   simulator.step(1.0);
   EXPECT_EQ(simulator.collision_count(), 2U);
+  EXPECT_EQ(simulator.collision_event_count(), 1U);  // the same contact: it has not moved since
   ASSERT_TRUE(drive_interface.command({-0.12, 0.0}).ok());
   simulator.step(1.0);
   EXPECT_NEAR(simulator.true_pose().x, 10.0 - 0.35 - 0.12, 0.003);
   EXPECT_EQ(simulator.collision_count(), 2U);
+  // Driving back into it is a new contact.
+  ASSERT_TRUE(drive_interface.command({0.12, 0.0}).ok());
+  simulator.step(3.0);
+  EXPECT_EQ(simulator.collision_count(), 3U);
+  EXPECT_EQ(simulator.collision_event_count(), 2U);
 }
 
 TEST(Simulator, APersonWalkingIntoTheRobotIsTheirCollisionNotOurs) {

@@ -9,8 +9,9 @@
 // robot's limits (paper: 0.12 m/s, 8 deg/s), no acceleration limits. Collision: if the next
 // integration step would bring the robot's disc into an obstacle of its height band, or into
 // a person it does not touch where it stands, the robot stays, its command is zeroed and
-// collision_count() goes up by one (collision_event_count() too when the step before was
-// not refused: a new contact); a new command lets it move again. People walk their
+// collision_count() goes up by one; a new command lets it move again. collision_event_count()
+// counts contacts: a refused step after the robot last moved (pushing on for a second, with
+// the command zeroed and given again at each tick, is one contact). People walk their
 // loops regardless of the robot: a person who walks into the robot (stopped, turning, or
 // overtaken from behind) is the person's collision, not the robot's; each such contact
 // (start of an overlap) is counted in person_contact_count(), and lasts until they walk on.
@@ -115,7 +116,7 @@ class Simulator {
   double pan_target_rad_ = 0.0;
   std::uint64_t collisions_ = 0;
   std::uint64_t collision_events_ = 0;
-  bool last_step_refused_ = false;
+  bool in_contact_ = false;  // refused steps since the robot last moved
   std::array<CollisionEvent, kCollisionLogSize> collision_log_{};
   std::uint64_t person_contacts_ = 0;
   std::vector<std::uint8_t> person_in_contact_;  // one per person, sized at construction
