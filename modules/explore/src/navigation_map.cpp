@@ -10,9 +10,6 @@ namespace {
 constexpr double kNoSiteDistance_m = 1e9;
 constexpr double kDiagonal = 1.4142135623730951;
 
-bool is_occupied(CellState state) { return state == CellState::occupied; }
-bool is_unknown(CellState state) { return state == CellState::unknown; }
-
 int cells_for(double metres, double resolution_m) { return static_cast<int>(std::ceil(metres / resolution_m)) + 1; }
 
 }  // namespace
@@ -40,9 +37,10 @@ bool NavigationMap::rebuild(const GridView& grid, const Eigen::Vector2d& robot, 
   }
   find_window(robot, extra);
   robot_ = robot;
-  distance_transform(occupied_site_.get(), &is_occupied);
-  distance_transform(unknown_site_.get(), &is_unknown);
-  classify(robot, extra);
+  extra_unknown_centre_ = extra;
+  distance_transform(occupied_site_.get(), [this](int x, int y) { return obstacle_site(x, y); });
+  distance_transform(unknown_site_.get(), [this](int x, int y) { return grid_.at(x, y) == CellState::unknown; });
+  classify();
   find_pockets();
   return true;
 }
@@ -146,7 +144,8 @@ double NavigationMap::site_distance_m(const std::int32_t* sites, int x, int y) c
 
 // Two-pass nearest-site propagation (8SSEDT): each cell takes the nearest site of the
 // neighbours already visited; exact up to rare sub-cell ties, which is all a 10 cm grid needs.
-void NavigationMap::distance_transform(std::int32_t* sites, bool (*is_site)(CellState)) {
+template <typename IsSite>
+void NavigationMap::distance_transform(std::int32_t* sites, IsSite&& is_site) {
   const int width = grid_.width;
   auto distance2 = [width](std::int32_t site, int x, int y) {
     const long dx = site % width - x;
@@ -162,8 +161,7 @@ void NavigationMap::distance_transform(std::int32_t* sites, bool (*is_site)(Cell
   };
   for (int y = window_.y0; y < window_.y1; ++y) {
     for (int x = window_.x0; x < window_.x1; ++x) {
-      const bool site = is_site(grid_.at(x, y)) && !(is_site == &is_occupied && under_robot(x, y));
-      sites[index(x, y)] = site ? static_cast<std::int32_t>(index(x, y)) : -1;
+      sites[index(x, y)] = is_site(x, y) ? static_cast<std::int32_t>(index(x, y)) : -1;
     }
   }
   for (int y = window_.y0; y < window_.y1; ++y) {
@@ -186,23 +184,39 @@ void NavigationMap::distance_transform(std::int32_t* sites, bool (*is_site)(Cell
   }
 }
 
-void NavigationMap::classify(const Eigen::Vector2d& robot, const Eigen::Vector2d& extra) {
+// Where paths may cross unknown cells: near the start pose (the robot starts in a disc whose
+// floor the camera cannot see), near the robot with unknown_travel_near_robot, and under the
+// robot's own disc (it stands there).
+bool NavigationMap::unknown_passable(int x, int y) const {
+  const double travel2 = params_.explore.unknown_travel_radius_m * params_.explore.unknown_travel_radius_m;
+  const Eigen::Vector2d centre = grid_.center(x, y);
+  const double from_robot2 = (centre - robot_).squaredNorm();
+  return (centre - extra_unknown_centre_).squaredNorm() <= travel2 ||
+         (params_.explore.unknown_travel_near_robot && from_robot2 <= travel2) ||
+         from_robot2 <= params_.robot_radius_m * params_.robot_radius_m;
+}
+
+// What the robot must keep its radius (and the margin) away from: occupied cells, except deep
+// under it, and with unknown_clearance the unknown cells it may not cross (a blank wall the
+// camera never saw: without this, paths ran along the seen floor with the disc in the wall).
+bool NavigationMap::obstacle_site(int x, int y) const {
+  const CellState state = grid_.at(x, y);
+  if (state == CellState::occupied) return !under_robot(x, y);
+  return state == CellState::unknown && params_.explore.unknown_clearance && !unknown_passable(x, y);
+}
+
+void NavigationMap::classify() {
   const double lethal = params_.lethal_distance_m(grid_.resolution_m);
   const double safe = params_.safe_distance_m(grid_.resolution_m);
   const double preferred = std::max(params_.explore.preferred_clearance_m, lethal + 1e-6);
-  const double travel2 = params_.explore.unknown_travel_radius_m * params_.explore.unknown_travel_radius_m;
-  const bool near_robot = params_.explore.unknown_travel_near_robot;
   for (int y = window_.y0; y < window_.y1; ++y) {
     for (int x = window_.x0; x < window_.x1; ++x) {
       const std::size_t i = index(x, y);
       const CellState state = grid_.at(x, y);
       const double clearance = occupied_distance_m(x, y);
-      const Eigen::Vector2d centre = grid_.center(x, y);
-      const bool unknown_allowed = (near_robot && (centre - robot).squaredNorm() <= travel2) ||
-                                   (centre - extra).squaredNorm() <= travel2;
       Traversability kind = Traversability::safe;
       if ((state == CellState::occupied && !under_robot(x, y)) || clearance < lethal ||
-          (state == CellState::unknown && !unknown_allowed)) {
+          (state == CellState::unknown && !unknown_passable(x, y))) {
         kind = Traversability::lethal;
       } else if (clearance < safe) {
         kind = Traversability::inflated;

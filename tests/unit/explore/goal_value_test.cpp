@@ -168,6 +168,34 @@ TEST(NavigationMap, InflatesObstaclesByTheRobotRadiusAndMargin) {
   EXPECT_TRUE(near_robot.passable(43, 40));
 }
 
+// A corridor whose walls were never seen (blank: their cells stay unknown), far from the
+// start: the robot keeps its radius and margin from them as from occupied cells, except
+// where it stands (it cannot be in a wall).
+TEST(NavigationMap, UnknownCellsPathsMayNotCrossAreKeptClearOf) {
+  TestGrid grid(80, 40, CellState::unknown);
+  grid.fill(0, 10, 80, 32, CellState::free);  // 2.2 m of floor between y = 1 and 3.2
+  const ExploreParams params = test_params(80, 40);
+  NavigationMap map(params);
+  const Eigen::Vector2d start(0.5, 2.1);
+  const Eigen::Vector2d robot(5.0, 2.1);
+  ASSERT_TRUE(map.rebuild(grid.view(), robot, start));
+  EXPECT_NEAR(map.occupied_distance_m(60, 13), 0.4, 1e-12);  // 0.4 m from the unknown row 9
+  EXPECT_EQ(map.traversability(60, 12), Traversability::lethal);    // 0.3 m: the disc in the wall
+  EXPECT_EQ(map.traversability(60, 13), Traversability::inflated);  // 0.4 m
+  EXPECT_EQ(map.traversability(60, 21), Traversability::safe);      // the middle
+  // The robot standing 0.2 m from the wall (a pose error) may still leave.
+  const Eigen::Vector2d grazing(5.05, 1.25);
+  ASSERT_TRUE(map.rebuild(grid.view(), grazing, start));
+  EXPECT_NE(map.traversability(50, 14), Traversability::lethal);  // 0.5 m out
+  // Without the rule only the unknown cells themselves are barred.
+  ExploreParams plain_params = params;
+  plain_params.explore.unknown_clearance = false;
+  NavigationMap plain(plain_params);
+  ASSERT_TRUE(plain.rebuild(grid.view(), robot, start));
+  EXPECT_NE(plain.traversability(60, 10), Traversability::lethal);
+  EXPECT_EQ(plain.traversability(60, 9), Traversability::lethal);
+}
+
 // A walled room, all seen, with a 0.8 m box whose inside is unknown and whose ring has a
 // two-cell gap the camera never saw (unknown too), and a 3.2 x 3.2 m unknown block walled off.
 struct PocketScene {

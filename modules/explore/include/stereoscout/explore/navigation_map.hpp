@@ -48,7 +48,8 @@ class NavigationMap {
 
   // Rebuilds everything for `grid`. Unknown cells are passable only within
   // unknown_travel_radius_m of `extra_unknown_centre` (the explorer passes the start pose),
-  // and of `robot` with unknown_travel_near_robot. Returns false (and leaves an empty map) if
+  // of `robot` with unknown_travel_near_robot, and under the robot's disc; with
+  // unknown_clearance the others are kept clear of like occupied cells. Returns false (and leaves an empty map) if
   // the grid is larger than the buffers.
   bool rebuild(const GridView& grid, const Eigen::Vector2d& robot, const Eigen::Vector2d& extra_unknown_centre);
 
@@ -57,6 +58,8 @@ class NavigationMap {
   std::size_t index(int x, int y) const { return grid_.index(x, y); }
 
   // Distances in metres between cell centres (a large value when there is none in the window).
+  // "Occupied" is every cell the robot keeps clear of: occupied cells (not deep under it) and,
+  // with explore.unknown_clearance, the unknown cells paths may not cross.
   double occupied_distance_m(int x, int y) const;
   double unknown_distance_m(int x, int y) const;
   Traversability traversability(int x, int y) const;
@@ -76,8 +79,11 @@ class NavigationMap {
 
  private:
   void find_window(const Eigen::Vector2d& robot, const Eigen::Vector2d& extra);
-  void distance_transform(std::int32_t* sites, bool (*is_site)(CellState));
-  void classify(const Eigen::Vector2d& robot, const Eigen::Vector2d& extra);
+  template <typename IsSite>
+  void distance_transform(std::int32_t* sites, IsSite&& is_site);
+  bool unknown_passable(int x, int y) const;
+  bool obstacle_site(int x, int y) const;
+  void classify();
   double site_distance_m(const std::int32_t* sites, int x, int y) const;
   bool under_robot(int x, int y) const;
   void find_pockets();
@@ -89,6 +95,7 @@ class NavigationMap {
   GridView grid_;
   CellBox window_;
   Eigen::Vector2d robot_ = Eigen::Vector2d::Zero();
+  Eigen::Vector2d extra_unknown_centre_ = Eigen::Vector2d::Zero();
   std::unique_ptr<std::int32_t[]> occupied_site_;
   std::unique_ptr<std::int32_t[]> unknown_site_;
   std::unique_ptr<std::uint8_t[]> traversability_;
