@@ -81,7 +81,8 @@ ExploreGtResult run_explore_gt(const core::SystemConfig& config, const host_sim:
   occupancy::OccupancyGrid grid(geometry, occupancy::LogOddsModel::from_config(config.grid));
   const occupancy::CellThresholds thresholds = occupancy::CellThresholds::from_config(config.grid);
   std::vector<occupancy::CellState> cells(geometry.cell_count(), occupancy::CellState::unknown);
-  const explore::GridView view = stack::navigation_view(geometry, cells.data());
+  std::vector<std::uint8_t> in_view(cells.size(), 0);
+  const explore::GridView view = stack::navigation_view(geometry, cells.data(), in_view.data());
 
   core::ExploreConfig explore_config = config.explore;
   explore_config.time_limit_s = std::min(explore_config.time_limit_s, config.run.max_time_s);
@@ -109,7 +110,7 @@ ExploreGtResult run_explore_gt(const core::SystemConfig& config, const host_sim:
       disparity_from_depth(depth, focal_baseline, scan_params, disparity);
       scanner.compute(disparity, simulator.pan_rad(), simulator.time_ns(), scan);
       grid.insert(scan, pose);
-      occupancy::classify_cells(grid, thresholds, cells.data());
+      occupancy::classify_cells(grid, thresholds, cells.data(), in_view.data());
       last_update_pose = pose;
       last_update_camera_heading = camera_heading;
       first = false;

@@ -92,9 +92,10 @@ void Explorer::start(const ExploreInput& input) {
 
 void Explorer::rebuild(const ExploreInput& input) {
   rebuild_needed_ = false;
-  // The robot starts in a disc the camera cannot see (its floor is too near): paths may cross
-  // it all the run, on the way out and on the way back.
-  const Eigen::Vector2d extra = position_of(start_pose_);
+  // Unknown cells may be crossed near the robot, and near the start on the way back: the robot
+  // started in a disc the camera could not see (its floor was too near).
+  const Eigen::Vector2d extra =
+      state_ == ExploreState::returning ? position_of(start_pose_) : position_of(input.pose);
   planning_grid_ = contacts_.stamp(input.grid, input.time_s);
   planning_on_copy_ = planning_grid_.cells != input.grid.cells;
   map_.rebuild(planning_grid_, position_of(input.pose), extra);

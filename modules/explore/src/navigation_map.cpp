@@ -184,16 +184,19 @@ void NavigationMap::distance_transform(std::int32_t* sites, IsSite&& is_site) {
   }
 }
 
-// Where paths may cross unknown cells: near the start pose (the robot starts in a disc whose
-// floor the camera cannot see), near the robot with unknown_travel_near_robot, and under the
-// robot's own disc (it stands there).
+// Where paths may cross unknown cells: under the robot's own disc (it stands there), and
+// where the camera's blind zone may have left them: near the start pose (the robot starts in a
+// disc whose floor the camera cannot see) and, with unknown_travel_near_robot, near the robot
+// (a look from a goal leaves the ring within a metre unseen). Never a cell that was in view:
+// that is a surface the stereo could not measure, such as a blank wall.
 bool NavigationMap::unknown_passable(int x, int y) const {
-  const double travel2 = params_.explore.unknown_travel_radius_m * params_.explore.unknown_travel_radius_m;
   const Eigen::Vector2d centre = grid_.center(x, y);
   const double from_robot2 = (centre - robot_).squaredNorm();
+  if (from_robot2 <= params_.robot_radius_m * params_.robot_radius_m) return true;
+  if (grid_.was_in_view(x, y)) return false;
+  const double travel2 = params_.explore.unknown_travel_radius_m * params_.explore.unknown_travel_radius_m;
   return (centre - extra_unknown_centre_).squaredNorm() <= travel2 ||
-         (params_.explore.unknown_travel_near_robot && from_robot2 <= travel2) ||
-         from_robot2 <= params_.robot_radius_m * params_.robot_radius_m;
+         (params_.explore.unknown_travel_near_robot && from_robot2 <= travel2);
 }
 
 // What the robot must keep its radius (and the margin) away from: occupied cells, except deep

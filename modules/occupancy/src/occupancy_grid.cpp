@@ -35,7 +35,8 @@ bool GridGeometry::same_as(const GridGeometry& other) const {
 
 LogOddsModel LogOddsModel::from_config(const core::GridConfig& config) {
   return {static_cast<float>(config.log_odds_hit), static_cast<float>(config.log_odds_miss),
-          static_cast<float>(config.log_odds_min), static_cast<float>(config.log_odds_max)};
+          static_cast<float>(config.log_odds_min), static_cast<float>(config.log_odds_max),
+          static_cast<float>(config.in_view_range_m)};
 }
 
 CellThresholds CellThresholds::from_config(const core::GridConfig& config) {
@@ -58,12 +59,19 @@ CellState CellThresholds::classify(float log_odds) const {
   return classify_log_odds(log_odds, logit(occupied), logit(free));
 }
 
-void classify_cells(const OccupancyGrid& grid, const CellThresholds& thresholds, CellState* cells) {
+void classify_cells(const OccupancyGrid& grid, const CellThresholds& thresholds, CellState* cells,
+                    std::uint8_t* in_view) {
   const float occupied_above = logit(thresholds.occupied);
   const float free_below = logit(thresholds.free);
   const float* log_odds = grid.data();
   const std::size_t count = grid.geometry().cell_count();
   for (std::size_t i = 0; i < count; ++i) cells[i] = classify_log_odds(log_odds[i], occupied_above, free_below);
+  if (in_view == nullptr) return;
+  const GridGeometry& geometry = grid.geometry();
+  for (int y = 0; y < geometry.height_cells; ++y) {
+    std::uint8_t* row = in_view + static_cast<std::size_t>(y) * static_cast<std::size_t>(geometry.width_cells);
+    for (int x = 0; x < geometry.width_cells; ++x) row[x] = grid.in_view(x, y) ? 1U : 0U;
+  }
 }
 
 OccupancyGrid::OccupancyGrid(const GridGeometry& geometry, const LogOddsModel& model)
@@ -114,7 +122,7 @@ void OccupancyGrid::hit(int cell_x, int cell_y, bool at_camera_height) {
   if (!geometry_.contains(cell_x, cell_y)) return;
   add(cell_x, cell_y, model_.hit);
   std::uint8_t& flags = cell_flags_[index(cell_x, cell_y)];
-  flags = static_cast<std::uint8_t>((flags & kHitThisScan) | (at_camera_height ? kLastHitAtCameraHeight : 0U));
+  flags = static_cast<std::uint8_t>((flags & (kHitThisScan | kInView)) | (at_camera_height ? kLastHitAtCameraHeight : 0U));
 }
 
 // A ray's two ends in cell units (x_m - origin) / resolution; false (counted) when an end is
@@ -245,6 +253,8 @@ void OccupancyGrid::insert_column(const Eigen::Vector2d& origin, const Eigen::Ve
     const Eigen::Vector2d stop = at(blind_end);
     clear_camera_height_hits(start.x(), start.y(), stop.x(), stop.y());
   }
+  const double in_view_end = std::min<double>(model_.in_view_range_m, obstacle ? length : model_.in_view_range_m);
+  if (in_view_end > visible_from) mark_in_view(at(visible_from), at(in_view_end));
   if (obstacle && length <= visible_from) {
     cast_ray(end.x(), end.y(), end.x(), end.y(), true, point.obstacle_at_camera_height);  // its own cell only
     return;
@@ -253,6 +263,19 @@ void OccupancyGrid::insert_column(const Eigen::Vector2d& origin, const Eigen::Ve
   const Eigen::Vector2d start = at(visible_from);
   const Eigen::Vector2d stop = obstacle ? end : at(reach);
   cast_ray(start.x(), start.y(), stop.x(), stop.y(), obstacle, point.obstacle_at_camera_height);
+}
+
+void OccupancyGrid::mark_in_view(const Eigen::Vector2d& from, const Eigen::Vector2d& to) {
+  GridSegment segment;
+  const InsertCounts counted = counts_;  // a rejected end is the column's, counted by its ray
+  const bool valid = grid_coordinates(from.x(), from.y(), to.x(), to.y(), segment);
+  counts_ = counted;
+  if (!valid) return;
+  const auto mark = [this](int x, int y) {
+    if (geometry_.contains(x, y)) cell_flags_[index(x, y)] |= kInView;
+  };
+  walk_cells(segment, mark);
+  mark(static_cast<int>(std::floor(segment.x1)), static_cast<int>(std::floor(segment.y1)));
 }
 
 // A scan's frame: rotates and translates robot-frame points into the map frame.

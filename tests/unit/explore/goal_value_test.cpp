@@ -1,5 +1,6 @@
 // Goal value H(s) (paper VI) on hand-made grids, and goal selection.
 #include <cmath>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -154,18 +155,23 @@ TEST(NavigationMap, InflatesObstaclesByTheRobotRadiusAndMargin) {
   ASSERT_TRUE(map.rebuild(unknown.view(), robot, robot));
   EXPECT_TRUE(map.passable(14, 10));   // 0.4 m from the robot
   EXPECT_FALSE(map.passable(25, 10));  // 1.5 m from the robot
-  // ... that is, near the start pose (the explorer's extra centre): away from it, an unseen
-  // blank wall within a metre of the robot is not a way through.
+  // Near the start pose (the explorer's extra centre when returning) too; near the robot only
+  // with unknown_travel_near_robot, and never a cell that was in view (a blank wall).
   const Eigen::Vector2d start(4.0, 4.0);
-  ASSERT_TRUE(map.rebuild(unknown.view(), robot, start));
-  EXPECT_FALSE(map.passable(14, 10));
+  ExploreParams start_only_params = params;
+  start_only_params.explore.unknown_travel_near_robot = false;
+  NavigationMap start_only(start_only_params);
+  ASSERT_TRUE(start_only.rebuild(unknown.view(), robot, start));
+  EXPECT_FALSE(start_only.passable(14, 10));
+  EXPECT_TRUE(start_only.passable(43, 40));
+  std::vector<std::uint8_t> in_view(unknown.cells.size(), 0);
+  in_view[unknown.view().index(14, 10)] = 1;
+  GridView seen = unknown.view();
+  seen.in_view = in_view.data();
+  ASSERT_TRUE(map.rebuild(seen, robot, start));
+  EXPECT_FALSE(map.passable(14, 10));  // in view: a surface the stereo could not measure
+  EXPECT_TRUE(map.passable(10, 14));   // as near, never in view: the blind zone
   EXPECT_TRUE(map.passable(43, 40));
-  ExploreParams near_robot_params = params;
-  near_robot_params.explore.unknown_travel_near_robot = true;
-  NavigationMap near_robot(near_robot_params);
-  ASSERT_TRUE(near_robot.rebuild(unknown.view(), robot, start));
-  EXPECT_TRUE(near_robot.passable(14, 10));
-  EXPECT_TRUE(near_robot.passable(43, 40));
 }
 
 // A corridor whose walls were never seen (blank: their cells stay unknown), far from the

@@ -7,6 +7,7 @@
 #include <limits>
 #include <set>
 #include <utility>
+#include <vector>
 
 #include "stereoscout/occupancy/scan_history.hpp"
 
@@ -82,7 +83,37 @@ TEST(OccupancyGrid, ObstacleInsideTheBlindZoneMarksOnlyItsOwnCell) {
   // A free column whose visible floor ends within a cell of the blind zone clears nothing.
   OccupancyGrid untouched(small_geometry(), LogOddsModel{});
   untouched.insert(one_column_visible_from(0.4F, Kind::free, 0.35F), core::Pose2{0.05, 0.05, 0.0});
-  EXPECT_TRUE(untouched.same_cells_as(OccupancyGrid(small_geometry(), LogOddsModel{})));
+  for (int y = 0; y < 20; ++y) {
+    for (int x = 0; x < 20; ++x) EXPECT_FLOAT_EQ(untouched.log_odds(x, y), 0.0F) << x << ", " << y;
+  }
+}
+
+// What a column had in view: from where its floor becomes visible up to in_view_range_m (a
+// free column: beyond its floor's end too, where a blank wall would stand), or to its obstacle.
+// The cells nearer (the blind zone) were never in view; no log-odds change beyond the ray.
+TEST(OccupancyGrid, ColumnsMarkWhatTheyHadInView) {
+  LogOddsModel model;
+  model.in_view_range_m = 0.8F;
+  OccupancyGrid grid(small_geometry(), model);
+  // Origin (0.05, 0.05) is cell (10, 10); floor visible from 0.2 m, seen up to 0.45 m.
+  grid.insert(one_column_visible_from(0.45F, Kind::free, 0.2F), core::Pose2{0.05, 0.05, 0.0});
+  for (int x = 10; x <= 11; ++x) EXPECT_FALSE(grid.in_view(x, 10)) << x;
+  for (int x = 12; x <= 18; ++x) EXPECT_TRUE(grid.in_view(x, 10)) << x;  // to 0.85 m
+  EXPECT_FALSE(grid.in_view(19, 10));
+  EXPECT_FALSE(grid.in_view(14, 11));
+  EXPECT_FLOAT_EQ(grid.log_odds(15, 10), 0.0F);  // beyond the floor: unknown, but in view
+  // An obstacle 0.3 m ahead hides what is behind it.
+  OccupancyGrid blocked(small_geometry(), model);
+  blocked.insert(one_column_visible_from(0.3F, Kind::obstacle, 0.2F), core::Pose2{0.05, 0.05, 0.0});
+  EXPECT_TRUE(blocked.in_view(13, 10));
+  EXPECT_FALSE(blocked.in_view(14, 10));
+  // classify_cells hands the marks on.
+  std::vector<CellState> cells(small_geometry().cell_count());
+  std::vector<std::uint8_t> in_view(small_geometry().cell_count(), 7);
+  classify_cells(grid, CellThresholds{}, cells.data(), in_view.data());
+  EXPECT_EQ(in_view[10 * 20 + 15], 1U);
+  EXPECT_EQ(in_view[10 * 20 + 10], 0U);
+  EXPECT_EQ(cells[10 * 20 + 15], CellState::unknown);
 }
 
 // A 0.1 m box 3 m ahead, approached in 7 cm steps (the update trigger) to 0.55 m, where the

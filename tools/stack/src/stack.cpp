@@ -42,7 +42,8 @@ std::size_t records_for(double max_time_s, double rate_hz) {
 
 }  // namespace
 
-explore::GridView navigation_view(const occupancy::GridGeometry& geometry, const occupancy::CellState* cells) {
+explore::GridView navigation_view(const occupancy::GridGeometry& geometry, const occupancy::CellState* cells,
+                                  const std::uint8_t* in_view) {
   static_assert(sizeof(occupancy::CellState) == 1);
   static_assert(static_cast<int>(occupancy::CellState::unknown) == static_cast<int>(explore::CellState::unknown) &&
                 static_cast<int>(occupancy::CellState::free) == static_cast<int>(explore::CellState::free) &&
@@ -53,6 +54,7 @@ explore::GridView navigation_view(const occupancy::GridGeometry& geometry, const
   view.resolution_m = geometry.resolution_m;
   view.origin_m = Eigen::Vector2d(geometry.origin_x_m, geometry.origin_y_m);
   view.cells = reinterpret_cast<const std::uint8_t*>(cells);  // unsigned char may alias any object
+  view.in_view = in_view;
   return view;
 }
 
@@ -111,6 +113,7 @@ Stack::Stack(const core::SystemConfig& config, const StackOptions& options, cons
       explore, config.robot, config.camera, config.grid.width_cells, config.grid.height_cells));
   cells_.assign(static_cast<std::size_t>(config.grid.width_cells) * static_cast<std::size_t>(config.grid.height_cells),
                 occupancy::CellState::unknown);
+  in_view_.assign(cells_.size(), 0);
 }
 
 Stack::~Stack() {
@@ -143,7 +146,7 @@ bool Stack::start(double start_timeout_s, std::string& error) {
   grid_ = std::make_unique<occupancy::JustInTimeGrid>(config_.grid, geometry,
                                                       static_cast<std::size_t>(config_.camera.width_px),
                                                       filter_->trajectory());
-  view_ = navigation_view(geometry, cells_.data());
+  view_ = navigation_view(geometry, cells_.data(), in_view_.data());
   pose_at_update_ = filter_->ml_pose();
   odometry_at_update_ = first.pose;
   rollup_due_ = true;  // the root gets a grid, so every lineage has one above it
@@ -374,7 +377,7 @@ core::Status Stack::grid_rollup() {
   live_nodes_.clear();
   for (std::size_t i = 0; i < filter_->particle_count(); ++i) live_nodes_.push_back(filter_->particle(i).trajectory);
   grid_->update(filter_->ml_trajectory_node(), live_nodes_.data(), live_nodes_.size());
-  if (const occupancy::OccupancyGrid* grid = grid_->ml_grid()) occupancy::classify_cells(*grid, thresholds_, cells_.data());
+  if (const occupancy::OccupancyGrid* grid = grid_->ml_grid()) occupancy::classify_cells(*grid, thresholds_, cells_.data(), in_view_.data());
   grid_changed_ = true;
   ++counters_.rollups;
   return core::Status::success();

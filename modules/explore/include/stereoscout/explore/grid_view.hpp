@@ -25,12 +25,16 @@ struct GridView {
   double resolution_m = 0.1;
   Eigen::Vector2d origin_m = Eigen::Vector2d::Zero();
   const std::uint8_t* cells = nullptr;  // CellState values
+  // Optional, same layout: nonzero where the cell was in view of the camera (the occupancy
+  // grid's in_view). Unknown and in view: a surface stereo could not measure, never crossed.
+  const std::uint8_t* in_view = nullptr;
 
   bool contains(int x, int y) const { return x >= 0 && y >= 0 && x < width && y < height; }
   std::size_t index(int x, int y) const {
     return static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x);
   }
   CellState at(int x, int y) const { return static_cast<CellState>(cells[index(x, y)]); }
+  bool was_in_view(int x, int y) const { return in_view != nullptr && in_view[index(x, y)] != 0; }
   Eigen::Vector2d center(int x, int y) const { return origin_m + resolution_m * Eigen::Vector2d(x + 0.5, y + 0.5); }
   Eigen::Vector2i cell_of(const Eigen::Vector2d& point) const {
     const Eigen::Vector2d local = (point - origin_m) / resolution_m;

@@ -17,6 +17,12 @@
 //   - invalid columns change nothing, and no column changes a cell nearer than its
 //     measurable_from_m (the part of the view the other camera does not share, or beyond
 //     the matcher's largest disparity): it could not have seen an obstacle there.
+// In view: every cell a column passes from where its floor becomes visible (and it can
+// measure) up to in_view_range_m, or to its obstacle if nearer, was in view of the camera. An
+// unknown cell in view is a surface the stereo could not measure (a blank wall just beyond
+// the floor seen up to it), unlike an unknown cell of the camera's blind zone, which no view
+// ever covered; the planner may cross the latter near the robot, never the former. The mark
+// does not change the cell's log-odds and stays set.
 // People walk on. Each cell remembers whether its last hit came from an obstacle at the
 // camera's height (DepthScanColumn::obstacle_at_camera_height). Such an obstacle is in view
 // at every range, so a ray that passes through the cell without ending there means it has
@@ -58,11 +64,13 @@ struct GridGeometry {
   bool same_as(const GridGeometry& other) const;
 };
 
+// What a scan says about the cells: log-odds, and how far a column's view counts.
 struct LogOddsModel {
   float hit = 0.85F;
   float miss = -0.4F;
   float min = -4.0F;
   float max = 4.0F;
+  float in_view_range_m = 2.0F;
   static LogOddsModel from_config(const core::GridConfig& config);
 };
 
@@ -88,8 +96,10 @@ struct GridSegment {
 
 class OccupancyGrid;
 // Classifies every cell of `grid` into `cells` (grid.geometry().cell_count() entries, row-major
-// like the grid). No allocation: the tick loop calls it after each roll-up.
-void classify_cells(const OccupancyGrid& grid, const CellThresholds& thresholds, CellState* cells);
+// like the grid), and, if `in_view` is given, writes 1 there for the cells that were in view
+// (OccupancyGrid::in_view), else 0. No allocation: the tick loop calls it after each roll-up.
+void classify_cells(const OccupancyGrid& grid, const CellThresholds& thresholds, CellState* cells,
+                    std::uint8_t* in_view = nullptr);
 
 // One valid column of a scan, compact (robot frame at capture time): 16 bytes, so the ring of
 // 4096 scans x 640 columns stays at 42 MB.
@@ -142,6 +152,7 @@ class OccupancyGrid {
   const GridGeometry& geometry() const { return geometry_; }
   const InsertCounts& insert_counts() const { return counts_; }
   bool same_cells_as(const OccupancyGrid& other) const;
+  bool in_view(int cell_x, int cell_y) const { return (cell_flags_[index(cell_x, cell_y)] & kInView) != 0U; }
   // Cell containing a map-frame point; false when outside the grid.
   bool cell_of(double x_m, double y_m, int& cell_x, int& cell_y) const;
 
@@ -153,6 +164,7 @@ class OccupancyGrid {
   struct ScanFrame;
   static constexpr std::uint8_t kLastHitAtCameraHeight = 1U;  // the cell's last hit was at the camera's height
   static constexpr std::uint8_t kHitThisScan = 2U;            // a column of the scan being inserted ends here
+  static constexpr std::uint8_t kInView = 4U;                  // a column's view covered the cell
 
   void add(int cell_x, int cell_y, float delta);
   void hit(int cell_x, int cell_y, bool at_camera_height);
@@ -169,11 +181,13 @@ class OccupancyGrid {
   void clear_camera_height_hits(double start_x, double start_y, double end_x, double end_y);
   // One column: origin and end point in the map frame.
   void insert_column(const Eigen::Vector2d& origin, const Eigen::Vector2d& end, const ScanPoint& point);
+  // Marks the cells from `from` to `to` (map frame), both cells included, as in view.
+  void mark_in_view(const Eigen::Vector2d& from, const Eigen::Vector2d& to);
 
   GridGeometry geometry_;
   LogOddsModel model_;
   std::unique_ptr<float[]> cells_;
-  std::unique_ptr<std::uint8_t[]> cell_flags_;  // kLastHitAtCameraHeight | kHitThisScan
+  std::unique_ptr<std::uint8_t[]> cell_flags_;  // kLastHitAtCameraHeight | kHitThisScan | kInView
   InsertCounts counts_;
 };
 

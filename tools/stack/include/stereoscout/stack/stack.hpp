@@ -66,7 +66,8 @@ struct Board {
 
 // The explorer's view of classified grid cells: the occupancy module's CellState codes read
 // as the explorer's bytes (the two enums have the same values, checked at compile time).
-explore::GridView navigation_view(const occupancy::GridGeometry& geometry, const occupancy::CellState* cells);
+explore::GridView navigation_view(const occupancy::GridGeometry& geometry, const occupancy::CellState* cells,
+                                  const std::uint8_t* in_view);
 
 enum class Localization : std::uint8_t { rbpf, groundtruth, odometry };
 bool parse_localization(const std::string& text, Localization& localization);
@@ -201,6 +202,7 @@ class Stack {
   core::FixedVector<slam::TrajectoryNodeHandle> live_nodes_;
   core::DepthScan scan_;
   std::vector<occupancy::CellState> cells_;  // the ML grid classified, the explorer's view
+  std::vector<std::uint8_t> in_view_;        // the ML grid's in-view marks, same layout
   explore::GridView view_;
 
   // Sensors.

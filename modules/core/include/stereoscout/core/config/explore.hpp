@@ -18,7 +18,7 @@ struct ExploreConfig {
   double visited_goal_radius_m = 0.5;
   int goal_memory = 512;
   double unknown_travel_radius_m = 1.0;
-  bool unknown_travel_near_robot = false;
+  bool unknown_travel_near_robot = true;
   bool unknown_clearance = true;
   double unknown_cell_cost = 1.0;
   double preferred_clearance_m = 0.8;
@@ -53,8 +53,8 @@ inline void describe(ConfigVisitor& v, ExploreConfig& c) {
   v.integer_field("goal_failures_before_blacklist", c.goal_failures_before_blacklist, {1, 100, "", "A goal that failed this many times is never chosen again; the return to the start is given up at its this-many-th failure (no plan, or no progress for stuck_timeout_s), with a look and a new try after each before that."});
   v.number("visited_goal_radius_m", c.visited_goal_radius_m, {0.0, 10.0, "m", "Candidates this close to a blacklisted or already visited goal are skipped."});
   v.integer_field("goal_memory", c.goal_memory, {1, 100000, "goals", "Failed and visited goals remembered (fixed list; when full, new ones are counted and forgotten)."});
-  v.number("unknown_travel_radius_m", c.unknown_travel_radius_m, {0.0, 5.0, "m", "Paths may cross unknown cells this close to the start pose (the camera cannot see the floor right in front of it, so the robot starts in an unknown disc), and to the robot with unknown_travel_near_robot."});
-  v.boolean("unknown_travel_near_robot", c.unknown_travel_near_robot, "Paths may also cross unknown cells within unknown_travel_radius_m of the robot wherever it is. Off: a surface without texture (a blank wall) stays unknown, and with this on the planner cuts through it whenever the robot comes within that radius.");
+  v.number("unknown_travel_radius_m", c.unknown_travel_radius_m, {0.0, 5.0, "m", "Paths may cross unknown cells this close to the start pose (the camera cannot see the floor right in front of it, so the robot starts in an unknown disc) and, with unknown_travel_near_robot, to the robot; never a cell that was in view."});
+  v.boolean("unknown_travel_near_robot", c.unknown_travel_near_robot, "Paths may also cross unknown cells within unknown_travel_radius_m of the robot wherever it is (after a look from a goal, the ring within a metre is unseen), except cells that were in view (grid.in_view_range_m): those are surfaces the stereo could not measure, such as a blank wall.");
   v.boolean("unknown_clearance", c.unknown_clearance, "Unknown cells that paths may not cross are kept clear of like occupied cells (robot radius, safety margin, clearance cost): a blank wall stays unknown, and without this paths run along the floor seen up to it with the robot's disc in the wall.");
   v.number("unknown_cell_cost", c.unknown_cell_cost, {0.0, 100.0, "", "Extra A* cost per metre through an unknown cell."});
   v.number("preferred_clearance_m", c.preferred_clearance_m, {0.0, 5.0, "m", "A* pays an obstacle penalty on cells closer than this to an occupied cell."});
