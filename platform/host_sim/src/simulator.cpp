@@ -9,6 +9,9 @@
 namespace stereoscout::host_sim {
 namespace {
 
+// A contact ends when the robot's disc is this far clear of every obstacle.
+constexpr double kContactClearance_m = 0.02;
+
 std::int64_t seconds_to_ns(double seconds) { return static_cast<std::int64_t>(std::llround(seconds * 1e9)); }
 
 }  // namespace
@@ -88,7 +91,9 @@ void Simulator::integrate(double dt_s) {
     } else {
       pose_ = next;
       distance_m_ += std::abs(travel);
-      in_contact_ = in_contact_ && travel == 0.0;  // a turn in place does not leave the contact
+      // The contact lasts until the robot has moved clear: sliding along a wall, refused step
+      // after step, is one contact.
+      in_contact_ = in_contact_ && obstacles_.disc_collides(pose_.translation(), robot_.radius_m + kContactClearance_m);
     }
   }
   count_person_contacts();

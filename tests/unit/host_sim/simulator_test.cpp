@@ -191,7 +191,7 @@ TEST(Simulator, DriveIntoAWallIsStoppedAndCounted) {
   ASSERT_TRUE(drive_interface.command({0.12, 0.0}).ok());
   simulator.step(1.0);
   EXPECT_EQ(simulator.collision_count(), 2U);
-  EXPECT_EQ(simulator.collision_event_count(), 1U);  // the same contact: it has not moved since
+  EXPECT_EQ(simulator.collision_event_count(), 1U);  // the same contact: it has not moved clear
   ASSERT_TRUE(drive_interface.command({-0.12, 0.0}).ok());
   simulator.step(1.0);
   EXPECT_NEAR(simulator.true_pose().x, 10.0 - 0.35 - 0.12, 0.003);

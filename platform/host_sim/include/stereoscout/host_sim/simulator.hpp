@@ -10,8 +10,8 @@
 // integration step would bring the robot's disc into an obstacle of its height band, or into
 // a person it does not touch where it stands, the robot stays, its command is zeroed and
 // collision_count() goes up by one; a new command lets it move again. collision_event_count()
-// counts contacts: a refused step after the robot last moved (pushing on for a second, with
-// the command zeroed and given again at each tick, is one contact). People walk their
+// counts contacts: a refused step when the robot was clear (2 cm) of every obstacle since the
+// last one; pushing on, or sliding along a wall, refused step after step, is one contact. People walk their
 // loops regardless of the robot: a person who walks into the robot (stopped, turning, or
 // overtaken from behind) is the person's collision, not the robot's; each such contact
 // (start of an overlap) is counted in person_contact_count(), and lasts until they walk on.
@@ -116,7 +116,7 @@ class Simulator {
   double pan_target_rad_ = 0.0;
   std::uint64_t collisions_ = 0;
   std::uint64_t collision_events_ = 0;
-  bool in_contact_ = false;  // refused steps since the robot last moved
+  bool in_contact_ = false;  // a step was refused and the robot has not moved clear since
   std::array<CollisionEvent, kCollisionLogSize> collision_log_{};
   std::uint64_t person_contacts_ = 0;
   std::vector<std::uint8_t> person_in_contact_;  // one per person, sized at construction
