@@ -180,7 +180,8 @@ TEST(NavigationMap, InflatesObstaclesByTheRobotRadiusAndMargin) {
 TEST(NavigationMap, UnknownCellsPathsMayNotCrossAreKeptClearOf) {
   TestGrid grid(80, 40, CellState::unknown);
   grid.fill(0, 10, 80, 32, CellState::free);  // 2.2 m of floor between y = 1 and 3.2
-  const ExploreParams params = test_params(80, 40);
+  ExploreParams params = test_params(80, 40);
+  params.explore.unknown_clearance = true;
   NavigationMap map(params);
   const Eigen::Vector2d start(0.5, 2.1);
   const Eigen::Vector2d robot(5.0, 2.1);
