@@ -125,9 +125,10 @@ void OccupancyGrid::hit(int cell_x, int cell_y, bool at_camera_height) {
   flags = static_cast<std::uint8_t>((flags & (kHitThisScan | kInView)) | (at_camera_height ? kLastHitAtCameraHeight : 0U));
 }
 
-// A ray's two ends in cell units (x_m - origin) / resolution; false (counted) when an end is
-// not finite or absurdly far.
-bool OccupancyGrid::grid_coordinates(double start_x, double start_y, double end_x, double end_y, GridSegment& segment) {
+// A ray's two ends in cell units (x_m - origin) / resolution; false when an end is not finite
+// or absurdly far (the caller counts it if it is a ray of its own).
+bool OccupancyGrid::grid_coordinates(double start_x, double start_y, double end_x, double end_y,
+                                     GridSegment& segment) const {
   const double span = kFarLimitInGridSpans * (geometry_.width_cells + geometry_.height_cells);
   segment = {(start_x - geometry_.origin_x_m) / geometry_.resolution_m,
              (start_y - geometry_.origin_y_m) / geometry_.resolution_m,
@@ -136,7 +137,6 @@ bool OccupancyGrid::grid_coordinates(double start_x, double start_y, double end_
   // Written so that NaN fails every comparison and is rejected.
   if (!(std::abs(segment.x0) < span && std::abs(segment.y0) < span && std::abs(segment.x1) < span &&
         std::abs(segment.y1) < span)) {
-    ++counts_.rays_rejected;
     return false;
   }
   return true;
@@ -193,7 +193,10 @@ void OccupancyGrid::miss(int cell_x, int cell_y) {
 void OccupancyGrid::cast_ray(double start_x, double start_y, double end_x, double end_y, bool end_is_obstacle,
                              bool at_camera_height) {
   GridSegment segment;
-  if (!grid_coordinates(start_x, start_y, end_x, end_y, segment)) return;
+  if (!grid_coordinates(start_x, start_y, end_x, end_y, segment)) {
+    ++counts_.rays_rejected;
+    return;
+  }
   ++counts_.rays;
   walk_cells(segment, [this](int x, int y) { miss(x, y); });
   const int x1 = static_cast<int>(std::floor(segment.x1));
@@ -207,7 +210,10 @@ void OccupancyGrid::cast_ray(double start_x, double start_y, double end_x, doubl
 
 void OccupancyGrid::clear_camera_height_hits(double start_x, double start_y, double end_x, double end_y) {
   GridSegment segment;
-  if (!grid_coordinates(start_x, start_y, end_x, end_y, segment)) return;
+  if (!grid_coordinates(start_x, start_y, end_x, end_y, segment)) {
+    ++counts_.rays_rejected;
+    return;
+  }
   walk_cells(segment, [this](int x, int y) {
     if (geometry_.contains(x, y) && (cell_flags_[index(x, y)] & kLastHitAtCameraHeight) != 0U) miss(x, y);
   });
@@ -267,10 +273,8 @@ void OccupancyGrid::insert_column(const Eigen::Vector2d& origin, const Eigen::Ve
 
 void OccupancyGrid::mark_in_view(const Eigen::Vector2d& from, const Eigen::Vector2d& to) {
   GridSegment segment;
-  const InsertCounts counted = counts_;  // a rejected end is the column's, counted by its ray
-  const bool valid = grid_coordinates(from.x(), from.y(), to.x(), to.y(), segment);
-  counts_ = counted;
-  if (!valid) return;
+  // Not counted: a rejected end is the column's, counted by its ray.
+  if (!grid_coordinates(from.x(), from.y(), to.x(), to.y(), segment)) return;
   const auto mark = [this](int x, int y) {
     if (geometry_.contains(x, y)) cell_flags_[index(x, y)] |= kInView;
   };

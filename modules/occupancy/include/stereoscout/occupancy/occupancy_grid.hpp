@@ -70,7 +70,7 @@ struct LogOddsModel {
   float miss = -0.4F;
   float min = -4.0F;
   float max = 4.0F;
-  float in_view_range_m = 2.0F;
+  float in_view_range_m = 0.0F;  // grid.in_view_range_m (0: nothing is marked)
   static LogOddsModel from_config(const core::GridConfig& config);
 };
 
@@ -172,7 +172,7 @@ class OccupancyGrid {
   void miss(int cell_x, int cell_y);
   bool marked_hit_this_scan(int cell_x, int cell_y) const;
   void set_hit_marks(const Eigen::Vector2d& end, bool marked);
-  bool grid_coordinates(double start_x, double start_y, double end_x, double end_y, GridSegment& segment);
+  bool grid_coordinates(double start_x, double start_y, double end_x, double end_y, GridSegment& segment) const;
   template <typename EachPoint>
   void insert_points(const ScanFrame& frame, EachPoint&& each_point);
   void cast_ray(double start_x, double start_y, double end_x, double end_y, bool end_is_obstacle,
