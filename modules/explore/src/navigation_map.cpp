@@ -225,11 +225,9 @@ void NavigationMap::classify() {
         kind = Traversability::inflated;
       }
       traversability_[i] = static_cast<std::uint8_t>(kind);
-      auto closeness = [&](double distance) { return std::clamp((preferred - distance) / (preferred - lethal), 0.0, 1.0); };
+      const double closeness = std::clamp((preferred - clearance) / (preferred - lethal), 0.0, 1.0);
       const double unknown_cost = state == CellState::unknown ? params_.explore.unknown_cell_cost : 0.0;
-      penalty_[i] = static_cast<float>(1.0 + params_.explore.obstacle_cost_weight * closeness(clearance) +
-                                       params_.explore.unknown_proximity_weight * closeness(unknown_distance_m(x, y)) +
-                                       unknown_cost);
+      penalty_[i] = static_cast<float>(1.0 + params_.explore.obstacle_cost_weight * closeness + unknown_cost);
     }
   }
 }

@@ -128,34 +128,6 @@ TEST(PathPlanner, StraightLineInOpenSpaceAndKeepsAwayFromObstacles) {
   }
 }
 
-// A corridor whose blank walls were never measured: 2.2 m of seen floor between unknown cells,
-// the robot in it (so the unknown cells within a metre of it may be crossed), the goal by the
-// south wall 4 m on. With the proximity cost the path keeps to the middle until it must turn
-// to the goal; without it, it runs straight along the wall with the robot's disc in it.
-TEST(PathPlanner, UnknownProximityCostKeepsPathsOffUnseenWalls) {
-  TestGrid grid(80, 40, CellState::unknown);
-  grid.fill(0, 10, 80, 32, CellState::free);
-  const Eigen::Vector2d robot(1.05, 1.25);  // cell (10, 12), 0.3 m from the unknown row 9
-  const Eigen::Vector2i start(10, 12);
-  const Eigen::Vector2i goal(50, 12);
-  auto cells_near_unknown = [&](double weight) {
-    ExploreParams params = test_params(80, 40);
-    params.explore.unknown_proximity_weight = weight;
-    NavigationMap map(params);
-    PathPlanner planner(params);
-    Plan plan(4096);
-    EXPECT_TRUE(map.rebuild(grid.view(), robot, robot));
-    EXPECT_EQ(planner.plan(map, start, goal, plan), PlanResult::found);
-    int near = 0;
-    for (const Eigen::Vector2i& cell : plan.cells) {
-      if (map.unknown_distance_m(cell.x(), cell.y()) < params.lethal_distance_m(0.1)) ++near;  // disc in the wall
-    }
-    return near;
-  };
-  EXPECT_EQ(cells_near_unknown(0.0), 41);  // every cell of the straight line
-  EXPECT_LT(cells_near_unknown(4.0), 12);  // only the ends, where start and goal are
-}
-
 TEST(PathPlanner, ReportsBlockedGoalsFullPlansAndNoPath) {
   const ExploreParams params = test_params(60, 40);
   NavigationMap map(params);

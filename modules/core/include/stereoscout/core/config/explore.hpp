@@ -23,7 +23,6 @@ struct ExploreConfig {
   double unknown_cell_cost = 1.0;
   double preferred_clearance_m = 0.8;
   double obstacle_cost_weight = 4.0;
-  double unknown_proximity_weight = 0.0;
   int max_plan_waypoints = 8192;
   double lookahead_m = 0.35;
   double turn_in_place_deg = 25.0;
@@ -60,7 +59,6 @@ inline void describe(ConfigVisitor& v, ExploreConfig& c) {
   v.number("unknown_cell_cost", c.unknown_cell_cost, {0.0, 100.0, "", "Extra A* cost per metre through an unknown cell."});
   v.number("preferred_clearance_m", c.preferred_clearance_m, {0.0, 5.0, "m", "A* pays an obstacle penalty on cells closer than this to an occupied cell."});
   v.number("obstacle_cost_weight", c.obstacle_cost_weight, {0.0, 1000.0, "", "Extra A* cost per metre at the lethal distance, falling linearly to 0 at preferred_clearance_m."});
-  v.number("unknown_proximity_weight", c.unknown_proximity_weight, {0.0, 1000.0, "", "Extra A* cost per metre at the lethal distance from an unknown cell, falling linearly to 0 at preferred_clearance_m, as obstacle_cost_weight does for occupied cells: a blank wall the stereo never measures stays unknown, and without this paths run along the floor seen up to it."});
   v.integer_field("max_plan_waypoints", c.max_plan_waypoints, {2, 10000000, "cells", "Capacity of a plan; a longer path is a counted planning failure."});
   v.number("lookahead_m", c.lookahead_m, {0.05, 5.0, "m", "Pure-pursuit lookahead distance of the path follower."});
   v.number("turn_in_place_deg", c.turn_in_place_deg, {1.0, 180.0, "deg", "The follower turns in place while the lookahead point is farther off the heading than this."});
