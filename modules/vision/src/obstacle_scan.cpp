@@ -18,6 +18,7 @@ ObstacleScanParams scan_params_from_config(const core::VisionConfig& vision, con
   params.same_surface_depth_m = vision.scan_same_surface_depth_m;
   params.max_disparity_px = vision.dense_num_disparities - 1;
   params.unmatched_border_px = vision.dense_window_px / 2 + detail::kCensusRadius;
+  params.blank_wall_within_m = vision.scan_blank_wall_within_m;
   return params;
 }
 
@@ -101,6 +102,9 @@ void ObstacleScanner::add_point(int column, const Eigen::Vector3d& point, const 
   const double dx = point.x() - origin.x();
   const double dy = point.y() - origin.y();
   const double range = std::hypot(dx, dy);
+  if (std::fabs(point.z()) > params_.floor_tolerance_m) {
+    state.farthest_off_floor_m = std::max(state.farthest_off_floor_m, range);
+  }
   if (std::fabs(point.z()) <= params_.floor_tolerance_m) {
     if (!state.has_floor || range > state.farthest_floor.range_m) {
       state.has_floor = true;
@@ -116,6 +120,13 @@ void ObstacleScanner::add_point(int column, const Eigen::Vector3d& point, const 
     }
   }
   // Points below the floor or above the robot are ignored.
+}
+
+// The floor stops within range and nothing is seen beyond it, at any height: the view ends
+// at a surface stereo cannot measure (a blank wall).
+bool ObstacleScanner::floor_ends_at_unseen_surface(const ColumnState& state) const {
+  return state.farthest_floor.range_m < std::min(params_.blank_wall_within_m, params_.max_range_m) &&
+         state.farthest_off_floor_m <= state.farthest_floor.range_m + params_.same_surface_depth_m;
 }
 
 void ObstacleScanner::compute(const cv::Mat& disparity, double pan_rad, std::int64_t timestamp_ns,
@@ -156,6 +167,9 @@ void ObstacleScanner::compute(const cv::Mat& disparity, double pan_rad, std::int
       const bool at_camera_height = state.nearest_at_camera_height_m <= confirmed.range_m + params_.same_surface_depth_m;
       out = {static_cast<float>(confirmed.x_m), static_cast<float>(confirmed.y_m), core::DepthScanColumn::Kind::obstacle,
              visible_from, at_camera_height, measurable};
+    } else if (state.has_floor && floor_ends_at_unseen_surface(state)) {
+      out = {static_cast<float>(state.farthest_floor.x_m), static_cast<float>(state.farthest_floor.y_m),
+             core::DepthScanColumn::Kind::obstacle, visible_from, false, measurable};
     } else if (state.has_floor) {
       out = {static_cast<float>(state.farthest_floor.x_m), static_cast<float>(state.farthest_floor.y_m),
              core::DepthScanColumn::Kind::free, visible_from, false, measurable};

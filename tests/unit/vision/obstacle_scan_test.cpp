@@ -115,6 +115,86 @@ TEST(ObstacleScan, TenCentimetreBoxShowsUp) {
   EXPECT_EQ(scan.columns[620].kind, Kind::free);
 }
 
+// Stereo gives a blank surface no disparity: keeps the floor's pixels nearer than
+// `floor_until_m` (of the paper's head: height 0.6 - (v - c_y) Z / f) and, with
+// `keep_off_floor`, every pixel off the floor.
+cv::Mat without_blank_pixels(const cv::Mat& left_depth, const StereoCalibration& camera, double floor_until_m,
+                             bool keep_off_floor) {
+  cv::Mat disparity = disparity_from_depth(left_depth, camera);
+  for (int y = 0; y < left_depth.rows; ++y) {
+    for (int x = 0; x < left_depth.cols; ++x) {
+      const double z = left_depth.at<double>(y, x);
+      const double height = 0.6 - (y - camera.principal_y_px) * z / camera.focal_px;
+      const bool floor = std::fabs(height) < 0.01;
+      if (floor ? z > floor_until_m : !keep_off_floor) disparity.at<float>(y, x) = kInvalidDisparity;
+    }
+  }
+  return disparity;
+}
+
+TEST(ObstacleScan, ABlankWallIsAnObstacleWhereTheFloorEnds) {
+  test::Scene scene;
+  scene.boxes.push_back({{1.3, -4.0, 0.0}, {1.4, 4.0, 2.5}});  // a wall 1.2 m ahead of the camera
+  StereoCalibration camera;
+  const test::Rendering view = test::render(scene, camera, paper_mount(), core::Pose2{});
+  const cv::Mat blank = without_blank_pixels(view.left_depth, camera, 100.0, false);
+  ObstacleScanner scanner(ObstacleScanParams{}, camera, paper_mount());
+  core::DepthScan scan;
+  scanner.allocate(scan);
+  scanner.compute(blank, 0.0, 0, scan);
+  for (int x = 100; x < 540; x += 20) {
+    const core::DepthScanColumn& column = scan.columns[static_cast<std::size_t>(x)];
+    ASSERT_EQ(column.kind, Kind::obstacle) << "column " << x;
+    EXPECT_NEAR(column.x_robot_m, 1.3, 0.05) << "column " << x;
+  }
+  ObstacleScanParams off;
+  off.blank_wall_within_m = 0.0;
+  ObstacleScanner unaware(off, camera, paper_mount());
+  unaware.compute(blank, 0.0, 0, scan);
+  EXPECT_EQ(scan.columns[320].kind, Kind::free);  // the wall's cell would stay unknown
+}
+
+// Floor texture that fades 1.9 m from the camera under a blank ceiling: nothing is seen
+// beyond, but the end is beyond blank_wall_within_m, so it is no wall.
+TEST(ObstacleScan, FloorFadingBeyondTheBlankWallRangeIsFree) {
+  test::Scene scene;
+  scene.boxes.push_back({{6.0, -8.0, 0.0}, {6.1, 8.0, 2.5}});
+  StereoCalibration camera;
+  const test::Rendering view = test::render(scene, camera, paper_mount(), core::Pose2{});
+  ObstacleScanner scanner(ObstacleScanParams{}, camera, paper_mount());
+  core::DepthScan scan;
+  scanner.allocate(scan);
+  scanner.compute(without_blank_pixels(view.left_depth, camera, 1.9, false), 0.0, 0, scan);
+  for (int x = 100; x < 540; x += 20) {
+    EXPECT_EQ(scan.columns[static_cast<std::size_t>(x)].kind, Kind::free) << "column " << x;
+  }
+}
+
+TEST(ObstacleScan, FloorTextureFadingBeforeAFarWallIsNoObstacle) {
+  test::Scene scene;
+  scene.boxes.push_back({{5.0, -8.0, 0.0}, {5.1, 8.0, 2.5}});  // a textured wall 4.9 m ahead
+  StereoCalibration camera;
+  const test::Rendering view = test::render(scene, camera, paper_mount(), core::Pose2{});
+  ObstacleScanner scanner(ObstacleScanParams{}, camera, paper_mount());
+  core::DepthScan scan;
+  scanner.allocate(scan);
+  scanner.compute(without_blank_pixels(view.left_depth, camera, 3.0, true), 0.0, 0, scan);
+  for (int x = 100; x < 540; x += 20) {
+    const core::DepthScanColumn& column = scan.columns[static_cast<std::size_t>(x)];
+    // The wall is seen (above the floor's end), so it is the column's obstacle.
+    ASSERT_EQ(column.kind, Kind::obstacle) << "column " << x;
+    EXPECT_NEAR(column.x_robot_m, 5.0, 0.05) << "column " << x;
+  }
+  // With the wall's lower part above the robot's height only, what is seen beyond is not an
+  // obstacle: the column is free up to where its floor texture ends.
+  test::Scene high;
+  high.boxes.push_back({{5.0, -8.0, 1.3}, {5.1, 8.0, 2.5}});
+  const test::Rendering high_view = test::render(high, camera, paper_mount(), core::Pose2{});
+  scanner.compute(without_blank_pixels(high_view.left_depth, camera, 3.0, true), 0.0, 0, scan);
+  EXPECT_EQ(scan.columns[320].kind, Kind::free);
+  EXPECT_NEAR(scan.columns[320].x_robot_m, 3.1, 0.05);  // depth 3 m from the camera, 0.1 m ahead
+}
+
 TEST(ObstacleScan, AnObstacleThroughTheCameraHeightIsMarkedSo) {
   test::Scene scene;
   // A person-sized block (0 to 1.7 m) ahead to the right, a low box (0 to 0.5 m) to the left.

@@ -29,6 +29,14 @@
 // near part of the view), and a column there would otherwise report floor far behind an
 // obstacle it cannot see: the grid must not clear cells nearer than that. A column that can
 // measure nothing within max_range_m is invalid.
+// A blank wall gives stereo no disparity, so a column facing one would see floor up to the
+// wall and nothing else, and report free space with the wall's cell left unknown (the office
+// corridor's walls: the robot drove into them). So a column with no obstacle whose floor
+// ends within max_range_m, with no point off the floor seen farther than
+// same_surface_depth_m beyond that end (at any height: a far wall above the horizon, a
+// ceiling), reports an obstacle where its floor ends, if that is nearer than
+// blank_wall_within_m. Farther out the floor's texture fades (the office's tiles at about
+// 2 m, below a blank ceiling): its end there is not a wall.
 // An obstacle column is also marked obstacle_at_camera_height when the column holds an
 // obstacle point within floor_tolerance_m of the camera's height no more than
 // same_surface_depth_m behind the obstacle: such an obstacle (a person, a wall) stays in view
@@ -60,6 +68,9 @@ struct ObstacleScanParams {
   // matcher leaves unmatched (its window and census radii).
   int max_disparity_px = 63;
   int unmatched_border_px = 6;
+  // A column whose floor ends nearer than this with nothing seen beyond it reports an
+  // obstacle where the floor ends (a blank wall); 0: never.
+  double blank_wall_within_m = 1.5;
 };
 
 ObstacleScanParams scan_params_from_config(const core::VisionConfig& vision, const core::RobotConfig& robot);
@@ -86,7 +97,9 @@ class ObstacleScanner {
     bool has_floor = false;
     Candidate farthest_floor;
     double nearest_at_camera_height_m = 1e9;  // range of the nearest obstacle point there
+    double farthest_off_floor_m = 0.0;        // range of the farthest point not on the floor
   };
+  bool floor_ends_at_unseen_surface(const ColumnState& state) const;
   void reset_columns();
   void add_point(int column, const Eigen::Vector3d& point, const Eigen::Vector3d& origin);
   void keep_nearest(ColumnState& state, Candidate* nearest, const Candidate& candidate) const;
