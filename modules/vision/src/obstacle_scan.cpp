@@ -102,10 +102,9 @@ void ObstacleScanner::add_point(int column, const Eigen::Vector3d& point, const 
   const double dx = point.x() - origin.x();
   const double dy = point.y() - origin.y();
   const double range = std::hypot(dx, dy);
-  if (std::fabs(point.z()) > params_.floor_tolerance_m) {
-    state.farthest_off_floor_m = std::max(state.farthest_off_floor_m, range);
-  }
-  if (std::fabs(point.z()) <= params_.floor_tolerance_m) {
+  const bool on_floor = std::fabs(point.z()) <= params_.floor_tolerance_m;
+  if (!on_floor) state.farthest_off_floor_m = std::max(state.farthest_off_floor_m, range);  // any height
+  if (on_floor) {
     if (!state.has_floor || range > state.farthest_floor.range_m) {
       state.has_floor = true;
       const double capped = std::min(range, params_.max_range_m);

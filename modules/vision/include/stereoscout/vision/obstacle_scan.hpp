@@ -32,11 +32,10 @@
 // A blank wall gives stereo no disparity, so a column facing one would see floor up to the
 // wall and nothing else, and report free space with the wall's cell left unknown (the office
 // corridor's walls: the robot drove into them). So a column with no obstacle whose floor
-// ends within max_range_m, with no point off the floor seen farther than
+// ends nearer than blank_wall_within_m, with no point off the floor seen farther than
 // same_surface_depth_m beyond that end (at any height: a far wall above the horizon, a
-// ceiling), reports an obstacle where its floor ends, if that is nearer than
-// blank_wall_within_m. Farther out the floor's texture fades (the office's tiles at about
-// 2 m, below a blank ceiling): its end there is not a wall.
+// ceiling), reports an obstacle where its floor ends. Farther out the floor's texture fades
+// (the office's tiles at about 2 m, below a blank ceiling): its end there is not a wall.
 // An obstacle column is also marked obstacle_at_camera_height when the column holds an
 // obstacle point within floor_tolerance_m of the camera's height no more than
 // same_surface_depth_m behind the obstacle: such an obstacle (a person, a wall) stays in view
