@@ -132,16 +132,24 @@ cv::Mat without_blank_pixels(const cv::Mat& left_depth, const StereoCalibration&
   return disparity;
 }
 
-TEST(ObstacleScan, ABlankWallIsAnObstacleWhereTheFloorEnds) {
+// The scan of a wall across the view, `wall_x_m` ahead of the robot, from `bottom_m` to 2.5 m
+// high, through without_blank_pixels.
+core::DepthScan scan_of_wall(double wall_x_m, double bottom_m, double floor_until_m, bool keep_off_floor,
+                             const ObstacleScanParams& params = ObstacleScanParams{}) {
   test::Scene scene;
-  scene.boxes.push_back({{1.3, -4.0, 0.0}, {1.4, 4.0, 2.5}});  // a wall 1.2 m ahead of the camera
+  scene.boxes.push_back({{wall_x_m, -8.0, bottom_m}, {wall_x_m + 0.1, 8.0, 2.5}});
   StereoCalibration camera;
   const test::Rendering view = test::render(scene, camera, paper_mount(), core::Pose2{});
-  const cv::Mat blank = without_blank_pixels(view.left_depth, camera, 100.0, false);
-  ObstacleScanner scanner(ObstacleScanParams{}, camera, paper_mount());
+  ObstacleScanner scanner(params, camera, paper_mount());
   core::DepthScan scan;
   scanner.allocate(scan);
-  scanner.compute(blank, 0.0, 0, scan);
+  scanner.compute(without_blank_pixels(view.left_depth, camera, floor_until_m, keep_off_floor), 0.0, 0, scan);
+  return scan;
+}
+
+TEST(ObstacleScan, ABlankWallIsAnObstacleWhereTheFloorEnds) {
+  // A wall 1.2 m ahead of the camera, nothing of it measured.
+  const core::DepthScan scan = scan_of_wall(1.3, 0.0, 100.0, false);
   for (int x = 100; x < 540; x += 20) {
     const core::DepthScanColumn& column = scan.columns[static_cast<std::size_t>(x)];
     ASSERT_EQ(column.kind, Kind::obstacle) << "column " << x;
@@ -149,36 +157,22 @@ TEST(ObstacleScan, ABlankWallIsAnObstacleWhereTheFloorEnds) {
   }
   ObstacleScanParams off;
   off.blank_wall_within_m = 0.0;
-  ObstacleScanner unaware(off, camera, paper_mount());
-  unaware.compute(blank, 0.0, 0, scan);
-  EXPECT_EQ(scan.columns[320].kind, Kind::free);  // the wall's cell would stay unknown
+  const core::DepthScan unaware = scan_of_wall(1.3, 0.0, 100.0, false, off);
+  EXPECT_EQ(unaware.columns[320].kind, Kind::free);  // the wall's cell would stay unknown
 }
 
 // Floor texture that fades 1.9 m from the camera under a blank ceiling: nothing is seen
 // beyond, but the end is beyond blank_wall_within_m, so it is no wall.
 TEST(ObstacleScan, FloorFadingBeyondTheBlankWallRangeIsFree) {
-  test::Scene scene;
-  scene.boxes.push_back({{6.0, -8.0, 0.0}, {6.1, 8.0, 2.5}});
-  StereoCalibration camera;
-  const test::Rendering view = test::render(scene, camera, paper_mount(), core::Pose2{});
-  ObstacleScanner scanner(ObstacleScanParams{}, camera, paper_mount());
-  core::DepthScan scan;
-  scanner.allocate(scan);
-  scanner.compute(without_blank_pixels(view.left_depth, camera, 1.9, false), 0.0, 0, scan);
+  const core::DepthScan scan = scan_of_wall(6.0, 0.0, 1.9, false);
   for (int x = 100; x < 540; x += 20) {
     EXPECT_EQ(scan.columns[static_cast<std::size_t>(x)].kind, Kind::free) << "column " << x;
   }
 }
 
 TEST(ObstacleScan, FloorTextureFadingBeforeAFarWallIsNoObstacle) {
-  test::Scene scene;
-  scene.boxes.push_back({{5.0, -8.0, 0.0}, {5.1, 8.0, 2.5}});  // a textured wall 4.9 m ahead
-  StereoCalibration camera;
-  const test::Rendering view = test::render(scene, camera, paper_mount(), core::Pose2{});
-  ObstacleScanner scanner(ObstacleScanParams{}, camera, paper_mount());
-  core::DepthScan scan;
-  scanner.allocate(scan);
-  scanner.compute(without_blank_pixels(view.left_depth, camera, 3.0, true), 0.0, 0, scan);
+  // A textured wall 4.9 m ahead, the floor measured up to 3 m.
+  const core::DepthScan scan = scan_of_wall(5.0, 0.0, 3.0, true);
   for (int x = 100; x < 540; x += 20) {
     const core::DepthScanColumn& column = scan.columns[static_cast<std::size_t>(x)];
     // The wall is seen (above the floor's end), so it is the column's obstacle.
@@ -187,12 +181,9 @@ TEST(ObstacleScan, FloorTextureFadingBeforeAFarWallIsNoObstacle) {
   }
   // With the wall's lower part above the robot's height only, what is seen beyond is not an
   // obstacle: the column is free up to where its floor texture ends.
-  test::Scene high;
-  high.boxes.push_back({{5.0, -8.0, 1.3}, {5.1, 8.0, 2.5}});
-  const test::Rendering high_view = test::render(high, camera, paper_mount(), core::Pose2{});
-  scanner.compute(without_blank_pixels(high_view.left_depth, camera, 3.0, true), 0.0, 0, scan);
-  EXPECT_EQ(scan.columns[320].kind, Kind::free);
-  EXPECT_NEAR(scan.columns[320].x_robot_m, 3.1, 0.05);  // depth 3 m from the camera, 0.1 m ahead
+  const core::DepthScan high = scan_of_wall(5.0, 1.3, 3.0, true);
+  EXPECT_EQ(high.columns[320].kind, Kind::free);
+  EXPECT_NEAR(high.columns[320].x_robot_m, 3.1, 0.05);  // depth 3 m from the camera, 0.1 m ahead
 }
 
 TEST(ObstacleScan, AnObstacleThroughTheCameraHeightIsMarkedSo) {
