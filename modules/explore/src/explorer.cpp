@@ -16,6 +16,8 @@ constexpr double kPanReached_rad = 0.02;
 constexpr double kProgressStep_m = 0.1;
 // The point ahead of the robot checked before moving forward.
 constexpr double kAheadCheck_m = 0.15;
+// Facing the plan's next waypoint: within this angle of it (a 50 Hz tick turns 0.16 deg).
+constexpr double kFacingPlan_rad = 0.05;
 // Goals tried per tick when planning to the best ones fails.
 constexpr int kGoalAttemptsPerTick = 4;
 
@@ -124,7 +126,12 @@ void Explorer::check_plan(const ExploreInput& input) {
 
 bool Explorer::replan(const ExploreInput& input) {
   follower_.reset();
-  if (planner_.plan(map_, cell_of(input.pose), goal_.cell, plan_) == PlanResult::found) {
+  Eigen::Vector2i target = goal_.cell;
+  if (!map_.passable(target.x(), target.y()) &&
+      map_.nearest_passable(goal_.cell, params_.explore.goal_shift_radius_m, target)) {
+    ++counters_.goal_shifts;
+  }
+  if (planner_.plan(map_, cell_of(input.pose), target, plan_) == PlanResult::found) {
     fresh_look_ = false;  // the robot drives on: the next failure deserves a look of its own
     return true;
   }
@@ -287,11 +294,31 @@ void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
   // which follows every grid update).
   const GridView& grid = planning_on_copy_ ? planning_grid_ : input.grid;
   if (follow.command.linear_mps > 0.0 && !stretch_is_clear(grid, input.pose)) {
+    if (turn_to_face_plan(grid, input.pose, output)) return;
     ++counters_.safety_stops;
     stop_and_look(input, output, follow.command.angular_rad_s);
     return;
   }
   output.drive = follow.command;
+}
+
+// Pure pursuit cuts the plan's corners; beside an obstacle the cut can touch it where the plan
+// itself keeps clear (A* checks the disc on the plan's cells only). Before calling the way
+// blocked: when the point just ahead towards the plan's next waypoint is clear, turn in place
+// to face it (the follower then drives on from a heading along the plan). True while turning.
+bool Explorer::turn_to_face_plan(const GridView& grid, const core::Pose2& pose, ExploreOutput& output) {
+  const Eigen::Vector2d robot = position_of(pose);
+  for (std::size_t k = follower_.progress(); k < plan_.waypoints.size(); ++k) {
+    const Eigen::Vector2d towards = plan_.waypoints[k] - robot;
+    if (towards.norm() < kAheadCheck_m) continue;
+    const double heading_error = core::wrap_angle(std::atan2(towards.y(), towards.x()) - pose.theta);
+    if (std::abs(heading_error) < kFacingPlan_rad) return false;  // already facing it: blocked
+    if (!disc_is_clear(grid, robot + kAheadCheck_m * towards.normalized(), robot)) return false;
+    output.drive.angular_rad_s = std::copysign(params_.max_turn_rate_rad_s, heading_error);
+    ++counters_.turns_to_face_plan;
+    return true;
+  }
+  return false;
 }
 
 // Stops, and replans from a rebuilt map on the next tick. With pan_at_goal it looks around

@@ -252,6 +252,23 @@ Traversability NavigationMap::traversability(int x, int y) const {
 
 bool NavigationMap::passable(int x, int y) const { return traversability(x, y) != Traversability::lethal; }
 
+bool NavigationMap::nearest_passable(const Eigen::Vector2i& cell, double radius_m, Eigen::Vector2i& found) const {
+  const int reach = static_cast<int>(std::floor(radius_m / grid_.resolution_m));
+  const int reach_squared = reach * reach;
+  int best = reach_squared + 1;
+  for (int dy = -reach; dy <= reach; ++dy) {
+    for (int dx = -reach; dx <= reach; ++dx) {
+      const int distance_squared = dx * dx + dy * dy;
+      const int x = cell.x() + dx;
+      const int y = cell.y() + dy;
+      if (distance_squared >= best || !window_.contains(x, y) || !passable(x, y)) continue;
+      best = distance_squared;
+      found = {x, y};
+    }
+  }
+  return best <= reach_squared;
+}
+
 double NavigationMap::step_cost(int from_x, int from_y, int to_x, int to_y) const {
   const bool diagonal = from_x != to_x && from_y != to_y;
   const double length = grid_.resolution_m * (diagonal ? kDiagonal : 1.0);

@@ -74,6 +74,37 @@ TEST(Explorer, ReplansWhenAnObstacleAppearsOnThePath) {
   }
 }
 
+// An obstacle cell appears on the goal itself (a person's trace, a stereo outlier): the goal is
+// not failed; the plan goes to the nearest passable cell within goal_shift_radius_m. With the
+// shift off, the same update fails the goal.
+TEST(Explorer, AGoalWhoseCellBecomesImpassableIsShiftedNotFailed) {
+  for (const double shift_radius_m : {0.5, 0.0}) {
+    Corridor scene;
+    ExploreParams params = no_look_params(100, 60);
+    params.explore.goal_shift_radius_m = shift_radius_m;
+    Explorer explorer(params);
+    explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.0, true));
+    ASSERT_EQ(explorer.state(), ExploreState::drive);
+    const Goal goal = explorer.goal();
+    scene.grid.set(goal.cell.x(), goal.cell.y(), CellState::occupied);
+    explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 1.0, true));
+    if (shift_radius_m == 0.0) {
+      EXPECT_EQ(explorer.counters().goal_failures, 1U);
+      EXPECT_EQ(explorer.counters().goal_shifts, 0U);
+      continue;
+    }
+    EXPECT_EQ(explorer.state(), ExploreState::drive);
+    EXPECT_EQ(explorer.counters().goal_failures, 0U);
+    EXPECT_EQ(explorer.counters().goal_shifts, 1U);
+    EXPECT_EQ(explorer.goal().cell, goal.cell);  // the goal (its value, the memory) is unchanged
+    ASSERT_FALSE(explorer.plan().cells.empty());
+    const Eigen::Vector2i end = explorer.plan().cells.back();
+    EXPECT_TRUE(explorer.navigation_map().passable(end.x(), end.y()));
+    EXPECT_LE((end - goal.cell).cast<double>().norm() * 0.1, shift_radius_m + 1e-9);
+    EXPECT_GE((end - goal.cell).cast<double>().norm() * 0.1, params.robot_radius_m - 0.1);
+  }
+}
+
 TEST(Explorer, StopsBeforeAnOccupiedCellAheadEvenBeforeTheMapIsRebuilt) {
   Corridor scene;
   Explorer explorer(no_look_params(100, 60));

@@ -3,7 +3,10 @@
 // tick: look around 360 degrees (pan unit, or turn in place without one), choose the goal of
 // highest value H, plan A* to it, follow the plan; after every observation update rebuild the
 // navigation map, check the rest of the plan and replan when it is blocked; no safe plan ->
-// another goal; a goal that keeps failing is blacklisted. Exploration ends when no goal is
+// another goal; a goal that keeps failing is blacklisted. A goal whose own cell a later update
+// makes impassable (an obstacle cell appeared within the robot's radius of it: a person's trace, a
+// stereo outlier) is not failed for that: the plan goes to the nearest passable cell within
+// explore.goal_shift_radius_m, whose view is nearly the same. Exploration ends when no goal is
 // worth more than min_goal_value or at time_limit_s, then the robot returns to the start if
 // configured. With pan_at_goal, neither "no goal" nor "no way back" is concluded before a
 // fresh look from where the robot stands (people walking past leave traces that a look
@@ -12,7 +15,9 @@
 // Safety, every tick: the emergency stop commands zero velocity in the same call; before any
 // forward motion the next stretch of the plan (and the point just ahead of the robot) is
 // checked against the cells the current grid holds as occupied, and the robot stops if the
-// disc would touch one it does not already touch. With pan_at_goal it then looks around
+// disc would touch one it does not already touch; first, if facing the plan's next waypoint
+// would clear it (pure pursuit cut a corner beside an obstacle), it turns in place to face it
+// instead. Otherwise, with pan_at_goal, it looks around
 // (a standing robot makes no observation update, so nothing would clear a person's trace)
 // and carries on to the same goal on a new plan. A robot that commands forward motion but
 // does not move has touched something the camera did not see (contact_memory.hpp): it stops,
@@ -62,8 +67,10 @@ struct ExploreCounters {
   std::uint64_t goals_blacklisted = 0;
   std::uint64_t plan_failures = 0;
   std::uint64_t replans = 0;           // plan blocked after an observation update
+  std::uint64_t goal_shifts = 0;       // plans to a passable cell near a goal whose own cell became impassable
   std::uint64_t stuck = 0;
   std::uint64_t safety_stops = 0;
+  std::uint64_t turns_to_face_plan = 0;  // ticks turning to face the plan instead of a safety stop
   std::uint64_t stalls = 0;            // forward motion commanded, none made: a contact
   std::uint64_t emergency_stop_ticks = 0;
   std::uint64_t looks = 0;
@@ -100,6 +107,7 @@ class Explorer {
   void drive_step(const ExploreInput& input, ExploreOutput& output);
   void stop_and_look(const ExploreInput& input, ExploreOutput& output, double turn_rad_s);
   bool stretch_is_clear(const GridView& grid, const core::Pose2& pose) const;
+  bool turn_to_face_plan(const GridView& grid, const core::Pose2& pose, ExploreOutput& output);
   bool disc_is_clear(const GridView& grid, const Eigen::Vector2d& centre, const Eigen::Vector2d& robot) const;
   Eigen::Vector2i cell_of(const core::Pose2& pose) const;
 

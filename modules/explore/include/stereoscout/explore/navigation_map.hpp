@@ -64,6 +64,9 @@ class NavigationMap {
   double unknown_distance_m(int x, int y) const;
   Traversability traversability(int x, int y) const;
   bool passable(int x, int y) const;
+  // The passable cell nearest to `cell` within `radius_m` (ties: the first in row order);
+  // false when there is none.
+  bool nearest_passable(const Eigen::Vector2i& cell, double radius_m, Eigen::Vector2i& found) const;
   // Cost of moving between two 8-neighbours (metres times the obstacle and unknown penalties
   // of the cell entered); requires passable(to).
   double step_cost(int from_x, int from_y, int to_x, int to_y) const;
