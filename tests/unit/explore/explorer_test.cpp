@@ -105,6 +105,63 @@ TEST(Explorer, AGoalWhoseCellBecomesImpassableIsShiftedNotFailed) {
   }
 }
 
+// Beside an obstacle, pure pursuit's heading can cut the plan's corner: the point just ahead
+// would touch the obstacle where the plan keeps clear. The robot turns to face the plan and
+// drives on, with no safety stop (before: stop, look, the same command, stop again, for ever).
+TEST(Explorer, TurnsToFaceThePlanWhenOnlyTheCornerCutIsBlocked) {
+  Corridor scene;
+  const ExploreParams params = no_look_params(100, 60);
+  Explorer explorer(params);
+  const Eigen::Vector2d robot(2.0, 3.0);
+  explorer.step(input_at(scene.grid.view(), robot.x(), robot.y(), 0.0, 0.0, true));
+  ASSERT_EQ(explorer.state(), ExploreState::drive);
+  // The plan's direction from the robot (its first waypoint at least 0.15 m away); the robot
+  // heads 24 degrees right of it (the plan turns left), within the follower's turn-in-place angle.
+  Eigen::Vector2d towards = Eigen::Vector2d::Zero();
+  for (const Eigen::Vector2d& waypoint : explorer.plan().waypoints) {
+    if ((waypoint - robot).norm() >= 0.15) {
+      towards = (waypoint - robot).normalized();
+      break;
+    }
+  }
+  const double plan_heading = std::atan2(towards.y(), towards.x());
+  const double first_heading = plan_heading - core::degrees_to_radians(24.0);
+  double heading = first_heading;
+  const Eigen::Vector2d ahead = robot + 0.15 * Eigen::Vector2d(std::cos(heading), std::sin(heading));
+  const Eigen::Vector2d facing = robot + 0.15 * towards;
+  // An obstacle cell on the right that the disc just ahead would touch, and neither the robot
+  // where it stands, nor the disc just ahead along the plan, nor the plan's next 0.6 m.
+  const double radius = params.robot_radius_m;
+  const auto centre = [](int x, int y) { return Eigen::Vector2d(0.1 * x + 0.05, 0.1 * y + 0.05); };
+  Eigen::Vector2i obstacle(-1, -1);
+  for (int y = 25; y < 40 && obstacle.x() < 0; ++y) {
+    for (int x = 15; x < 30 && obstacle.x() < 0; ++x) {
+      const Eigen::Vector2d cell = centre(x, y);
+      bool clear_of_plan = (cell - robot).norm() > radius + 0.01 && (cell - facing).norm() > radius + 0.005;
+      for (const Eigen::Vector2d& waypoint : explorer.plan().waypoints) {
+        if ((waypoint - robot).norm() < 0.6) clear_of_plan = clear_of_plan && (cell - waypoint).norm() > radius + 0.005;
+      }
+      if (clear_of_plan && (cell - ahead).norm() < radius - 0.005) obstacle = {x, y};
+    }
+  }
+  ASSERT_GE(obstacle.x(), 0);
+  scene.grid.set(obstacle.x(), obstacle.y(), CellState::occupied);  // no rebuild: the plan stays
+  double time = 0.1;
+  ExploreOutput output = explorer.step(input_at(scene.grid.view(), robot.x(), robot.y(), heading, time, false));
+  EXPECT_EQ(output.drive.linear_mps, 0.0);
+  EXPECT_GT(output.drive.angular_rad_s, 0.0);  // towards the plan, away from the obstacle
+  EXPECT_EQ(explorer.counters().turns_to_face_plan, 1U);
+  const double dt = 0.02;
+  for (int tick = 0; tick < 500 && output.drive.linear_mps == 0.0; ++tick) {
+    heading += output.drive.angular_rad_s * dt;
+    time += dt;
+    output = explorer.step(input_at(scene.grid.view(), robot.x(), robot.y(), heading, time, false));
+  }
+  EXPECT_GT(output.drive.linear_mps, 0.0);
+  EXPECT_EQ(explorer.counters().safety_stops, 0U);
+  EXPECT_GT(heading, first_heading);  // it drives on once the point ahead is clear
+}
+
 TEST(Explorer, StopsBeforeAnOccupiedCellAheadEvenBeforeTheMapIsRebuilt) {
   Corridor scene;
   Explorer explorer(no_look_params(100, 60));
