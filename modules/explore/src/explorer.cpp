@@ -44,6 +44,7 @@ Explorer::Explorer(const ExploreParams& params)
               params.explore.goal_failures_before_blacklist),
       stall_(params.explore),
       contacts_(params.explore, params.max_width, params.max_height),
+      fresh_(params.explore, params.max_width, params.max_height),
       planner_(params),
       follower_(params),
       plan_(static_cast<std::size_t>(params.explore.max_plan_waypoints)) {}
@@ -98,6 +99,7 @@ void Explorer::rebuild(const ExploreInput& input) {
   // started in a disc the camera could not see (its floor was too near).
   const Eigen::Vector2d extra =
       state_ == ExploreState::returning ? position_of(start_pose_) : position_of(input.pose);
+  fresh_.observe(input.grid, input.time_s);
   planning_grid_ = contacts_.stamp(input.grid, input.time_s);
   planning_on_copy_ = planning_grid_.cells != input.grid.cells;
   map_.rebuild(planning_grid_, position_of(input.pose), extra);
@@ -293,8 +295,8 @@ void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
   // The current grid, with the contact cells when there are any (stamped at the last rebuild,
   // which follows every grid update).
   const GridView& grid = planning_on_copy_ ? planning_grid_ : input.grid;
-  if (follow.command.linear_mps > 0.0 && !stretch_is_clear(grid, input.pose)) {
-    if (turn_to_face_plan(grid, input.pose, output)) return;
+  if (follow.command.linear_mps > 0.0 && !stretch_is_clear(grid, input.pose, input.time_s)) {
+    if (turn_to_face_plan(grid, input.pose, input.time_s, output)) return;
     ++counters_.safety_stops;
     stop_and_look(input, output, follow.command.angular_rad_s);
     return;
@@ -306,14 +308,14 @@ void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
 // itself keeps clear (A* checks the disc on the plan's cells only). Before calling the way
 // blocked: when the point just ahead towards the plan's next waypoint is clear, turn in place
 // to face it (the follower then drives on from a heading along the plan). True while turning.
-bool Explorer::turn_to_face_plan(const GridView& grid, const core::Pose2& pose, ExploreOutput& output) {
+bool Explorer::turn_to_face_plan(const GridView& grid, const core::Pose2& pose, double time_s, ExploreOutput& output) {
   const Eigen::Vector2d robot = position_of(pose);
   for (std::size_t k = follower_.progress(); k < plan_.waypoints.size(); ++k) {
     const Eigen::Vector2d towards = plan_.waypoints[k] - robot;
     if (towards.norm() < kAheadCheck_m) continue;
     const double heading_error = core::wrap_angle(std::atan2(towards.y(), towards.x()) - pose.theta);
     if (std::abs(heading_error) < kFacingPlan_rad) return false;  // already facing it: blocked
-    if (!disc_is_clear(grid, robot + kAheadCheck_m * towards.normalized(), robot)) return false;
+    if (!disc_is_clear(grid, robot + kAheadCheck_m * towards.normalized(), robot, time_s)) return false;
     output.drive.angular_rad_s = std::copysign(params_.max_turn_rate_rad_s, heading_error);
     ++counters_.turns_to_face_plan;
     return true;
@@ -342,16 +344,18 @@ void Explorer::stop_and_look(const ExploreInput& input, ExploreOutput& output, d
   output.drive.angular_rad_s = turn_rad_s;
 }
 
-bool Explorer::disc_is_clear(const GridView& grid, const Eigen::Vector2d& centre, const Eigen::Vector2d& robot) const {
-  const double radius = params_.robot_radius_m;
-  const double deep = std::max(0.0, radius - grid.resolution_m);
-  const int reach = static_cast<int>(std::ceil(radius / grid.resolution_m)) + 1;
+bool Explorer::disc_is_clear(const GridView& grid, const Eigen::Vector2d& centre, const Eigen::Vector2d& robot,
+                             double time_s) const {
+  const double deep = std::max(0.0, params_.robot_radius_m - grid.resolution_m);
+  const double widest = params_.robot_radius_m + std::max(0.0, fresh_.margin_m());
+  const int reach = static_cast<int>(std::ceil(widest / grid.resolution_m)) + 1;
   const Eigen::Vector2i middle = grid.cell_of(centre);
   for (int y = middle.y() - reach; y <= middle.y() + reach; ++y) {
     for (int x = middle.x() - reach; x <= middle.x() + reach; ++x) {
       if (!grid.contains(x, y) || grid.at(x, y) != CellState::occupied) continue;
       const Eigen::Vector2d cell = grid.center(x, y);
       const double ahead = (cell - centre).norm();
+      const double radius = params_.robot_radius_m + (fresh_.fresh(grid, x, y, time_s) ? fresh_.margin_m() : 0.0);
       if (ahead >= radius) continue;
       // A cell the disc already overlaps where it stands does not stop it, unless the move
       // goes deeper into it (a grazed obstacle: pushing on would be a collision); cells deep
@@ -364,17 +368,17 @@ bool Explorer::disc_is_clear(const GridView& grid, const Eigen::Vector2d& centre
   return true;
 }
 
-bool Explorer::stretch_is_clear(const GridView& grid, const core::Pose2& pose) const {
+bool Explorer::stretch_is_clear(const GridView& grid, const core::Pose2& pose, double time_s) const {
   const Eigen::Vector2d robot = position_of(pose);
   const Eigen::Vector2d ahead = robot + kAheadCheck_m * Eigen::Vector2d(std::cos(pose.theta), std::sin(pose.theta));
-  if (!disc_is_clear(grid, ahead, robot)) return false;
+  if (!disc_is_clear(grid, ahead, robot, time_s)) return false;
   double travelled = 0.0;
   Eigen::Vector2d previous = robot;
   for (std::size_t k = follower_.progress(); k < plan_.waypoints.size(); ++k) {
     travelled += (plan_.waypoints[k] - previous).norm();
     previous = plan_.waypoints[k];
     if (travelled > params_.explore.safety_check_distance_m) break;
-    if (!disc_is_clear(grid, plan_.waypoints[k], robot)) return false;
+    if (!disc_is_clear(grid, plan_.waypoints[k], robot, time_s)) return false;
   }
   return true;
 }

@@ -162,6 +162,36 @@ TEST(Explorer, TurnsToFaceThePlanWhenOnlyTheCornerCutIsBlocked) {
   EXPECT_GT(heading, first_heading);  // it drives on once the point ahead is clear
 }
 
+// Something appears beside the path where the floor was free (a person stepping in): the
+// robot keeps fresh_obstacle_margin_m more clearance from it: it does not drive on where it
+// would have driven past a static obstacle at the same place (it stops, or turns away towards
+// its plan); once the cell is no longer fresh it drives on.
+TEST(Explorer, KeepsMoreClearanceFromAnObstacleThatJustAppeared) {
+  for (const double margin_m : {0.3, 0.0}) {
+    Corridor scene;
+    ExploreParams params = no_look_params(100, 60);
+    params.explore.fresh_obstacle_margin_m = margin_m;
+    Explorer explorer(params);
+    const ExploreOutput first = explorer.step(input_at(scene.grid.view(), 1.5, 3.05, 0.0, 0.0, true));
+    ASSERT_GT(first.drive.linear_mps, 0.0);
+    // 0.55 m to the side of the path, 0.2 m ahead: outside the disc, within disc + margin.
+    scene.grid.set(17, 36, CellState::occupied);
+    const ExploreOutput next = explorer.step(input_at(scene.grid.view(), 1.5, 3.05, 0.0, 0.5, true));
+    if (margin_m == 0.0) {
+      EXPECT_GT(next.drive.linear_mps, 0.0);
+      EXPECT_EQ(explorer.counters().safety_stops, 0U);
+      continue;
+    }
+    EXPECT_EQ(next.drive.linear_mps, 0.0);
+    EXPECT_EQ(explorer.counters().safety_stops + explorer.counters().turns_to_face_plan, 1U);  // stopped, or turned away
+    ExploreOutput later;
+    for (double time = 0.55; time < 4.0; time += 0.05) {
+      later = explorer.step(input_at(scene.grid.view(), 1.5, 3.05, 0.0, time, false));
+    }
+    EXPECT_GT(later.drive.linear_mps, 0.0);  // 3 s on, the cell is an ordinary obstacle
+  }
+}
+
 TEST(Explorer, StopsBeforeAnOccupiedCellAheadEvenBeforeTheMapIsRebuilt) {
   Corridor scene;
   Explorer explorer(no_look_params(100, 60));

@@ -15,7 +15,8 @@
 // Safety, every tick: the emergency stop commands zero velocity in the same call; before any
 // forward motion the next stretch of the plan (and the point just ahead of the robot) is
 // checked against the cells the current grid holds as occupied, and the robot stops if the
-// disc would touch one it does not already touch; first, if facing the plan's next waypoint
+// disc would touch one it does not already touch (keeping fresh_obstacle_margin_m more from
+// cells that just turned occupied where the floor was free: fresh_obstacles.hpp); first, if facing the plan's next waypoint
 // would clear it (pure pursuit cut a corner beside an obstacle), it turns in place to face it
 // instead. Otherwise, with pan_at_goal, it looks around
 // (a standing robot makes no observation update, so nothing would clear a person's trace)
@@ -30,6 +31,7 @@
 #include "stereoscout/core/geometry.hpp"
 #include "stereoscout/core/messages.hpp"
 #include "stereoscout/explore/contact_memory.hpp"
+#include "stereoscout/explore/fresh_obstacles.hpp"
 #include "stereoscout/explore/goal_value.hpp"
 #include "stereoscout/explore/grid_view.hpp"
 #include "stereoscout/explore/navigation_map.hpp"
@@ -106,9 +108,10 @@ class Explorer {
   void look_step(const ExploreInput& input, ExploreOutput& output);
   void drive_step(const ExploreInput& input, ExploreOutput& output);
   void stop_and_look(const ExploreInput& input, ExploreOutput& output, double turn_rad_s);
-  bool stretch_is_clear(const GridView& grid, const core::Pose2& pose) const;
-  bool turn_to_face_plan(const GridView& grid, const core::Pose2& pose, ExploreOutput& output);
-  bool disc_is_clear(const GridView& grid, const Eigen::Vector2d& centre, const Eigen::Vector2d& robot) const;
+  bool stretch_is_clear(const GridView& grid, const core::Pose2& pose, double time_s) const;
+  bool turn_to_face_plan(const GridView& grid, const core::Pose2& pose, double time_s, ExploreOutput& output);
+  bool disc_is_clear(const GridView& grid, const Eigen::Vector2d& centre, const Eigen::Vector2d& robot,
+                     double time_s) const;
   Eigen::Vector2i cell_of(const core::Pose2& pose) const;
 
   ExploreParams params_;
@@ -117,6 +120,7 @@ class Explorer {
   GoalMemory memory_;
   StallDetector stall_;
   ContactMemory contacts_;
+  FreshObstacles fresh_;
   GridView planning_grid_;  // the input grid with the contact cells occupied (last rebuild)
   bool planning_on_copy_ = false;  // planning_grid_ is the contact memory's stamped copy
   bool stalled_ = false;           // this tick
