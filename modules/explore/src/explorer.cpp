@@ -16,7 +16,7 @@ constexpr double kPanReached_rad = 0.02;
 constexpr double kProgressStep_m = 0.1;
 // The point ahead of the robot checked before moving forward.
 constexpr double kAheadCheck_m = 0.15;
-// Facing the plan's next waypoint: within this angle of it (a 50 Hz tick turns 0.16 deg).
+// Facing the plan's next waypoint: within this angle of it (at 8 deg/s a 20 Hz drive tick turns 0.4 deg).
 constexpr double kFacingPlan_rad = 0.05;
 // Goals tried per tick when planning to the best ones fails.
 constexpr int kGoalAttemptsPerTick = 4;
