@@ -261,12 +261,27 @@ bool NavigationMap::nearest_passable(const Eigen::Vector2i& cell, double radius_
       const int distance_squared = dx * dx + dy * dy;
       const int x = cell.x() + dx;
       const int y = cell.y() + dy;
-      if (distance_squared >= best || !window_.contains(x, y) || !passable(x, y)) continue;
+      if (distance_squared >= best || !window_.contains(x, y) || !passable(x, y) || !in_sight(cell, {x, y})) continue;
       best = distance_squared;
       found = {x, y};
     }
   }
   return best <= reach_squared;
+}
+
+bool NavigationMap::in_sight(const Eigen::Vector2i& a, const Eigen::Vector2i& b) const {
+  // Quarter-cell steps along the line touch every cell it crosses but for corners grazed.
+  const Eigen::Vector2d from = a.cast<double>();
+  const Eigen::Vector2d step = b.cast<double>() - from;
+  const int steps = 4 * static_cast<int>(std::ceil(step.lpNorm<Eigen::Infinity>())) + 1;
+  for (int i = 0; i <= steps; ++i) {
+    const Eigen::Vector2d point = from + step * (static_cast<double>(i) / steps);
+    const int x = static_cast<int>(std::lround(point.x()));
+    const int y = static_cast<int>(std::lround(point.y()));
+    if (Eigen::Vector2i(x, y) == a) continue;  // a goal's own cell may hold the trace that moved it
+    if (grid_.contains(x, y) && grid_.at(x, y) == CellState::occupied) return false;
+  }
+  return true;
 }
 
 double NavigationMap::step_cost(int from_x, int from_y, int to_x, int to_y) const {

@@ -137,6 +137,27 @@ TEST(GoalValue, SelectsAReachableSafeCellFacingTheUnknown) {
   EXPECT_GT((next.position - goal.position).norm(), params.explore.visited_goal_radius_m);
 }
 
+// A goal's cell made impassable moves to the nearest passable cell in sight of it, never to
+// the other side of a wall (the view from there is not the goal's).
+TEST(NavigationMap, NearestPassableCellStaysOnTheGoalsSideOfAWall) {
+  TestGrid grid(60, 60, CellState::free);
+  grid.fill(14, 0, 15, 60, CellState::occupied);  // two walls 0.6 m apart: nothing passable between
+  grid.fill(20, 0, 21, 60, CellState::occupied);
+  NavigationMap map(test_params(60, 60));
+  const Eigen::Vector2d robot(4.0, 1.0);
+  ASSERT_TRUE(map.rebuild(grid.view(), robot, robot));
+  Eigen::Vector2i found(-1, -1);
+  ASSERT_FALSE(map.passable(19, 30));
+  EXPECT_FALSE(map.nearest_passable({19, 30}, 0.6, found));  // the passable cells are across x = 20
+  ASSERT_FALSE(map.passable(21, 30));
+  ASSERT_TRUE(map.nearest_passable({21, 30}, 0.6, found));
+  EXPECT_EQ(found, Eigen::Vector2i(24, 30));
+  grid.set(21, 30, CellState::occupied);  // a trace on the goal's own cell does not hide the rest
+  ASSERT_TRUE(map.rebuild(grid.view(), robot, robot));
+  ASSERT_TRUE(map.nearest_passable({21, 30}, 0.6, found));
+  EXPECT_EQ(found, Eigen::Vector2i(25, 30));  // 0.4 m from the trace
+}
+
 TEST(NavigationMap, InflatesObstaclesByTheRobotRadiusAndMargin) {
   TestGrid grid(60, 60, CellState::free);
   grid.set(30, 30, CellState::occupied);

@@ -64,8 +64,8 @@ class NavigationMap {
   double unknown_distance_m(int x, int y) const;
   Traversability traversability(int x, int y) const;
   bool passable(int x, int y) const;
-  // The passable cell nearest to `cell` within `radius_m` (ties: the first in row order);
-  // false when there is none.
+  // The passable cell nearest to `cell` within `radius_m` with no occupied cell on the straight
+  // line between them (not across a wall; ties: the first in row order); false when there is none.
   bool nearest_passable(const Eigen::Vector2i& cell, double radius_m, Eigen::Vector2i& found) const;
   // Cost of moving between two 8-neighbours (metres times the obstacle and unknown penalties
   // of the cell entered); requires passable(to).
@@ -73,6 +73,8 @@ class NavigationMap {
 
   // An unknown cell of an unobservable pocket (see above).
   bool in_pocket(int x, int y) const;
+  // No occupied cell on the straight line between the centres of cells a and b (a itself excepted).
+  bool in_sight(const Eigen::Vector2i& a, const Eigen::Vector2i& b) const;
   std::uint64_t pocket_cells() const { return pocket_cells_; }  // in the last rebuild
 
   // Flood fill (8-connected, over passable cells) from `start`; the start cell counts even if
