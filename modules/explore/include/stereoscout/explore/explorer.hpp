@@ -3,10 +3,10 @@
 // tick: look around 360 degrees (pan unit, or turn in place without one), choose the goal of
 // highest value H, plan A* to it, follow the plan; after every observation update rebuild the
 // navigation map, check the rest of the plan and replan when it is blocked; no safe plan ->
-// another goal; a goal that keeps failing is blacklisted. A goal whose own cell a later update
-// makes impassable (an obstacle cell appeared within the robot's radius of it: a person's trace, a
-// stereo outlier) is not failed for that: the plan goes to the nearest passable cell within
-// explore.goal_shift_radius_m, whose view is nearly the same. Exploration ends when no goal is
+// another goal; a goal that keeps failing is blacklisted. Optionally (goal_shift_radius_m, off
+// by default), a goal whose own cell a later update makes impassable (an obstacle cell within
+// the robot's radius of it: a person's trace, a stereo outlier) is not failed for that: the
+// plan goes to the nearest passable cell in sight of it. Exploration ends when no goal is
 // worth more than min_goal_value or at time_limit_s, then the robot returns to the start if
 // configured. With pan_at_goal, neither "no goal" nor "no way back" is concluded before a
 // fresh look from where the robot stands (people walking past leave traces that a look
@@ -15,10 +15,10 @@
 // Safety, every tick: the emergency stop commands zero velocity in the same call; before any
 // forward motion the next stretch of the plan (and the point just ahead of the robot) is
 // checked against the cells the current grid holds as occupied, and the robot stops if the
-// disc would touch one it does not already touch (keeping fresh_obstacle_margin_m more from
-// cells that just turned occupied where the floor was free: fresh_obstacles.hpp); first, if facing the plan's next waypoint
-// would clear it (pure pursuit cut a corner beside an obstacle), it turns in place to face it
-// instead. Otherwise, with pan_at_goal, it looks around
+// disc would touch one it does not already touch (optionally keeping fresh_obstacle_margin_m
+// more from cells that just turned occupied where the floor was free: fresh_obstacles.hpp).
+// If facing the plan's next waypoint would clear the way (pure pursuit cut a corner beside an
+// obstacle), it turns in place to face it instead. Otherwise, with pan_at_goal, it looks around
 // (a standing robot makes no observation update, so nothing would clear a person's trace)
 // and carries on to the same goal on a new plan. A robot that commands forward motion but
 // does not move has touched something the camera did not see (contact_memory.hpp): it stops,
