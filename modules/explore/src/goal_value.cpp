@@ -61,39 +61,29 @@ GoalValue::GoalValue(const ExploreParams& params)
   }
 }
 
-// Marches from the centre of s in steps of a quarter cell so that no cell the ray crosses
-// is skipped; |s' - s| is the distance between the two cell centres.
+// Marches from the centre of s (march_cells); |s' - s| is the distance between the two cell
+// centres.
 double GoalValue::ray_value(const GridView& grid, int x, int y, std::size_t ray_index) const {
   return ray_value(grid, nullptr, x, y, ray_index);
 }
 
 double GoalValue::ray_value(const GridView& grid, const NavigationMap* pockets, int x, int y,
                             std::size_t ray_index) const {
-  const Eigen::Vector2d& direction = directions_[ray_index];
-  const double step_cells = 0.25;
-  const double cap_cells = params_.ray_cap_m() / grid.resolution_m;
-  const double start_x = x + 0.5;
-  const double start_y = y + 0.5;
-  int last_x = x;
-  int last_y = y;
-  for (double t = step_cells; t <= cap_cells; t += step_cells) {
-    const int cx = static_cast<int>(std::floor(start_x + t * direction.x()));
-    const int cy = static_cast<int>(std::floor(start_y + t * direction.y()));
-    if (cx == last_x && cy == last_y) continue;
-    last_x = cx;
-    last_y = cy;
-    if (!grid.contains(cx, cy)) return 0.0;
+  double value = 0.0;
+  march_cells(x, y, directions_[ray_index], params_.ray_cap_m() / grid.resolution_m, [&](int cx, int cy) {
+    if (!grid.contains(cx, cy)) return false;
     const CellState state = grid.at(cx, cy);
-    if (state == CellState::free) continue;
-    if (state == CellState::occupied) return 0.0;
-    if (pockets != nullptr && pockets->in_pocket(cx, cy)) return 0.0;  // nothing to see there
+    if (state == CellState::free) return true;
+    if (state == CellState::occupied) return false;
+    if (pockets != nullptr && pockets->in_pocket(cx, cy)) return false;  // nothing to see there
     const double dx = cx - x;
     const double dy = cy - y;
     const double distance_m = grid.resolution_m * std::sqrt(dx * dx + dy * dy);
     const double error = (distance_m - params_.explore.preferred_distance_m) / params_.explore.distance_sigma_m;
-    return std::exp(-0.5 * error * error);
-  }
-  return 0.0;
+    value = std::exp(-0.5 * error * error);
+    return false;
+  });
+  return value;
 }
 
 double GoalValue::value(const GridView& grid, int x, int y) const {

@@ -269,19 +269,17 @@ bool NavigationMap::nearest_passable(const Eigen::Vector2i& cell, double radius_
   return best <= reach_squared;
 }
 
+// The start cell is not checked: a goal's own cell may hold the trace that moved it.
 bool NavigationMap::in_sight(const Eigen::Vector2i& a, const Eigen::Vector2i& b) const {
-  // Quarter-cell steps along the line touch every cell it crosses but for corners grazed.
-  const Eigen::Vector2d from = a.cast<double>();
-  const Eigen::Vector2d step = b.cast<double>() - from;
-  const int steps = 4 * static_cast<int>(std::ceil(step.lpNorm<Eigen::Infinity>())) + 1;
-  for (int i = 0; i <= steps; ++i) {
-    const Eigen::Vector2d point = from + step * (static_cast<double>(i) / steps);
-    const int x = static_cast<int>(std::lround(point.x()));
-    const int y = static_cast<int>(std::lround(point.y()));
-    if (Eigen::Vector2i(x, y) == a) continue;  // a goal's own cell may hold the trace that moved it
-    if (grid_.contains(x, y) && grid_.at(x, y) == CellState::occupied) return false;
-  }
-  return true;
+  const Eigen::Vector2d span = (b - a).cast<double>();
+  const double length_cells = span.norm();
+  if (length_cells == 0.0) return true;
+  bool clear = true;
+  march_cells(a.x(), a.y(), span / length_cells, length_cells, [&](int x, int y) {
+    clear = !(grid_.contains(x, y) && grid_.at(x, y) == CellState::occupied);
+    return clear;
+  });
+  return clear;
 }
 
 double NavigationMap::step_cost(int from_x, int from_y, int to_x, int to_y) const {

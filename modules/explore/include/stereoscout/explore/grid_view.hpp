@@ -42,6 +42,27 @@ struct GridView {
   }
 };
 
+// Visits the cells a ray from the centre of cell (x, y) along the unit vector `direction`
+// crosses within length_cells, in order and each once, the start cell excepted. It marches
+// in quarter-cell steps, so no cell the ray crosses is skipped (corners grazed aside). Stops
+// early when visit(cell_x, cell_y) returns false.
+template <typename Visit>
+void march_cells(int x, int y, const Eigen::Vector2d& direction, double length_cells, Visit&& visit) {
+  const double step_cells = 0.25;
+  const double start_x = x + 0.5;
+  const double start_y = y + 0.5;
+  int last_x = x;
+  int last_y = y;
+  for (double t = step_cells; t <= length_cells; t += step_cells) {
+    const int cx = static_cast<int>(std::floor(start_x + t * direction.x()));
+    const int cy = static_cast<int>(std::floor(start_y + t * direction.y()));
+    if (cx == last_x && cy == last_y) continue;
+    last_x = cx;
+    last_y = cy;
+    if (!visit(cx, cy)) return;
+  }
+}
+
 // Everything the module uses, in SI units, derived once from the config sections.
 struct ExploreParams {
   core::ExploreConfig explore;
