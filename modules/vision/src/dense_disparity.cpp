@@ -142,6 +142,7 @@ void DenseDisparityMatcher::select_row(int y, float* disparity_row) {
     float& out = disparity_row[x];
     out = kInvalidDisparity;
     if (!has_texture(x, y)) {
+      out = kUntexturedDisparity;
       ++stats_.rejected_texture;
       continue;
     }

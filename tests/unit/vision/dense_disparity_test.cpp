@@ -240,13 +240,17 @@ TEST(DenseDisparity, UntexturedAreaIsInvalidNotGuessed) {
   cv::Mat disparity;
   matcher.allocate_output(disparity);
   matcher.compute(left, right, disparity);
-  // The flat patch (seen in the left image at x + 10) well inside its border: all invalid.
+  // The flat patch (seen in the left image at x + 10) well inside its border: all invalid,
+  // and marked as lacking texture (the scan's blank-wall rule asks for that mark).
   for (int y = 40; y < 80; ++y) {
     for (int x = 100; x < 140; ++x) {
-      EXPECT_LT(disparity.at<float>(y, x), 0.0F) << "at " << x << "," << y;
+      EXPECT_EQ(disparity.at<float>(y, x), kUntexturedDisparity) << "at " << x << "," << y;
     }
   }
   EXPECT_GT(matcher.stats().rejected_texture, 1000U);
+  // Textured pixels that fail a check are holes of the other kind: the left image's border
+  // columns, whose search range leaves the image.
+  EXPECT_EQ(disparity.at<float>(60, 2), kInvalidDisparity);
 }
 
 TEST(DenseDisparity, ScoreCountsBadPixelsAndDensity) {

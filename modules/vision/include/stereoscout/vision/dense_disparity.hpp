@@ -13,6 +13,10 @@
 //   - the window or the search range leaves the image, or
 //   - it lies in a small island of similar disparities (SpeckleFilter): scattered wrong
 //     winners on weak texture, which would otherwise become phantom obstacles in the scan.
+// A pixel rejected for lack of texture holds kUntexturedDisparity rather than
+// kInvalidDisparity: the scan tells a blank surface (no texture to match) from a pixel stereo
+// was confused on (an occlusion edge, a repeated pattern). Both are negative: `d > 0` is the
+// test for a valid disparity everywhere.
 // The output is referenced to the LEFT image (the usual convention of stereo benchmarks):
 // left pixel (x, y) with disparity d matches right pixel (x - d, y). All buffers are sized at
 // construction; compute() does not allocate.
@@ -29,6 +33,7 @@
 namespace stereoscout::vision {
 
 inline constexpr float kInvalidDisparity = -1.0F;
+inline constexpr float kUntexturedDisparity = -2.0F;
 
 struct DenseDisparityParams {
   int num_disparities = 64;
