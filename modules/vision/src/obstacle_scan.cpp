@@ -19,6 +19,7 @@ ObstacleScanParams scan_params_from_config(const core::VisionConfig& vision, con
   params.max_disparity_px = vision.dense_num_disparities - 1;
   params.unmatched_border_px = vision.dense_window_px / 2 + detail::kCensusRadius;
   params.blank_wall_within_m = vision.scan_blank_wall_within_m;
+  params.blank_wall_untextured_fraction = vision.scan_blank_wall_untextured_fraction;
   return params;
 }
 
@@ -64,7 +65,10 @@ ObstacleScanner::ObstacleScanner(const ObstacleScanParams& params, const StereoC
       columns_(static_cast<std::size_t>(calibration.width_px)),
       nearest_(static_cast<std::size_t>(calibration.width_px) * per_column_),
       floor_visible_from_m_(static_cast<std::size_t>(calibration.width_px)),
-      measurable_from_m_(static_cast<std::size_t>(calibration.width_px)) {
+      measurable_from_m_(static_cast<std::size_t>(calibration.width_px)),
+      horizon_row_(std::clamp(static_cast<int>(std::ceil(calibration.principal_y_px -
+                                                          calibration.focal_px * std::tan(mount.tilt_rad))),
+                              0, calibration.height_px - 1)) {
   for (int column = 0; column < calibration.width_px; ++column) {
     floor_visible_from_m_[static_cast<std::size_t>(column)] = floor_visible_from(calibration, mount, column);
     measurable_from_m_[static_cast<std::size_t>(column)] = measurable_from(params, calibration, mount, column);
@@ -97,7 +101,8 @@ void ObstacleScanner::keep_nearest(ColumnState& state, Candidate* nearest, const
   state.obstacle_points = static_cast<int>(used + 1);
 }
 
-void ObstacleScanner::add_point(int column, const Eigen::Vector3d& point, const Eigen::Vector3d& origin) {
+void ObstacleScanner::add_point(int column, int x_left, int row, const Eigen::Vector3d& point,
+                                const Eigen::Vector3d& origin) {
   ColumnState& state = columns_[static_cast<std::size_t>(column)];
   const double dx = point.x() - origin.x();
   const double dy = point.y() - origin.y();
@@ -110,6 +115,8 @@ void ObstacleScanner::add_point(int column, const Eigen::Vector3d& point, const 
       const double capped = std::min(range, params_.max_range_m);
       const double scale = range > 0.0 ? capped / range : 0.0;
       state.farthest_floor = {range, origin.x() + dx * scale, origin.y() + dy * scale};
+      state.floor_end_x_left = x_left;
+      state.floor_end_row = row;
     }
   } else if (point.z() > params_.floor_tolerance_m && point.z() < params_.robot_height_m &&
              range <= params_.max_range_m) {
@@ -126,6 +133,18 @@ void ObstacleScanner::add_point(int column, const Eigen::Vector3d& point, const 
 bool ObstacleScanner::floor_ends_at_unseen_surface(const ColumnState& state) const {
   return state.farthest_floor.range_m < std::min(params_.blank_wall_within_m, params_.max_range_m) &&
          state.farthest_off_floor_m <= state.farthest_floor.range_m + params_.same_surface_depth_m;
+}
+
+// The left image above the floor's end, up to the horizon row, is mostly a surface without
+// texture (where a wall at or beyond that end shows; farther walls stand higher in the image).
+bool ObstacleScanner::blank_above_floor_end(const cv::Mat& disparity, const ColumnState& state) const {
+  if (params_.blank_wall_untextured_fraction <= 0.0) return true;
+  int pixels = 0;
+  int untextured = 0;
+  for (int row = state.floor_end_row - 1; row >= horizon_row_; --row, ++pixels) {
+    untextured += disparity.ptr<float>(row)[state.floor_end_x_left] == kUntexturedDisparity ? 1 : 0;
+  }
+  return pixels > 0 && untextured >= params_.blank_wall_untextured_fraction * pixels;
 }
 
 void ObstacleScanner::compute(const cv::Mat& disparity, double pan_rad, std::int64_t timestamp_ns,
@@ -150,7 +169,7 @@ void ObstacleScanner::compute(const cv::Mat& disparity, double pan_rad, std::int
       if (column < 0 || column >= disparity.cols) {
         continue;
       }
-      add_point(column, robot_from_camera * triangulate_point(calibration_, x_right, y, d), origin);
+      add_point(column, x, y, robot_from_camera * triangulate_point(calibration_, x_right, y, d), origin);
     }
   }
   for (std::size_t column = 0; column < columns_.size(); ++column) {
@@ -166,7 +185,7 @@ void ObstacleScanner::compute(const cv::Mat& disparity, double pan_rad, std::int
       const bool at_camera_height = state.nearest_at_camera_height_m <= confirmed.range_m + params_.same_surface_depth_m;
       out = {static_cast<float>(confirmed.x_m), static_cast<float>(confirmed.y_m), core::DepthScanColumn::Kind::obstacle,
              visible_from, at_camera_height, measurable};
-    } else if (state.has_floor && floor_ends_at_unseen_surface(state)) {
+    } else if (state.has_floor && floor_ends_at_unseen_surface(state) && blank_above_floor_end(disparity, state)) {
       out = {static_cast<float>(state.farthest_floor.x_m), static_cast<float>(state.farthest_floor.y_m),
              core::DepthScanColumn::Kind::obstacle, visible_from, false, measurable};
     } else if (state.has_floor) {

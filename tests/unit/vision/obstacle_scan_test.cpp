@@ -117,16 +117,17 @@ TEST(ObstacleScan, TenCentimetreBoxShowsUp) {
 
 // Stereo gives a blank surface no disparity: keeps the floor's pixels nearer than
 // `floor_until_m` (of the paper's head: height 0.6 - (v - c_y) Z / f) and, with
-// `keep_off_floor`, every pixel off the floor.
+// `keep_off_floor`, every pixel off the floor; the others get `unmatched`, the matcher's mark
+// for a pixel without texture unless told otherwise.
 cv::Mat without_blank_pixels(const cv::Mat& left_depth, const StereoCalibration& camera, double floor_until_m,
-                             bool keep_off_floor) {
+                             bool keep_off_floor, float unmatched = kUntexturedDisparity) {
   cv::Mat disparity = disparity_from_depth(left_depth, camera);
   for (int y = 0; y < left_depth.rows; ++y) {
     for (int x = 0; x < left_depth.cols; ++x) {
       const double z = left_depth.at<double>(y, x);
       const double height = 0.6 - (y - camera.principal_y_px) * z / camera.focal_px;
       const bool floor = std::fabs(height) < 0.01;
-      if (floor ? z > floor_until_m : !keep_off_floor) disparity.at<float>(y, x) = kInvalidDisparity;
+      if (floor ? z > floor_until_m : !keep_off_floor) disparity.at<float>(y, x) = unmatched;
     }
   }
   return disparity;
@@ -135,7 +136,8 @@ cv::Mat without_blank_pixels(const cv::Mat& left_depth, const StereoCalibration&
 // The scan of a wall across the view, `wall_x_m` ahead of the robot, from `bottom_m` to 2.5 m
 // high, through without_blank_pixels.
 core::DepthScan scan_of_wall(double wall_x_m, double bottom_m, double floor_until_m, bool keep_off_floor,
-                             const ObstacleScanParams& params = ObstacleScanParams{}) {
+                             const ObstacleScanParams& params = ObstacleScanParams{},
+                             float unmatched = kUntexturedDisparity) {
   test::Scene scene;
   scene.boxes.push_back({{wall_x_m, -8.0, bottom_m}, {wall_x_m + 0.1, 8.0, 2.5}});
   StereoCalibration camera;
@@ -143,7 +145,8 @@ core::DepthScan scan_of_wall(double wall_x_m, double bottom_m, double floor_unti
   ObstacleScanner scanner(params, camera, paper_mount());
   core::DepthScan scan;
   scanner.allocate(scan);
-  scanner.compute(without_blank_pixels(view.left_depth, camera, floor_until_m, keep_off_floor), 0.0, 0, scan);
+  scanner.compute(without_blank_pixels(view.left_depth, camera, floor_until_m, keep_off_floor, unmatched), 0.0, 0,
+                  scan);
   return scan;
 }
 
@@ -159,6 +162,24 @@ TEST(ObstacleScan, ABlankWallIsAnObstacleWhereTheFloorEnds) {
   off.blank_wall_within_m = 0.0;
   const core::DepthScan unaware = scan_of_wall(1.3, 0.0, 100.0, false, off);
   EXPECT_EQ(unaware.columns[320].kind, Kind::free);  // the wall's cell would stay unknown
+}
+
+// The floor's matched part also ends where the matcher is confused on texture it could see
+// (beside the edge of a near object the two cameras see differently: the clutter hall's
+// dividing wall seen along its length), with open floor beyond. Nothing above that end was
+// rejected for lack of texture, so it is no blank wall: the column stays free, and a later
+// look may see past it.
+TEST(ObstacleScan, AFloorEndingWhereStereoIsConfusedIsNoBlankWall) {
+  const core::DepthScan confused = scan_of_wall(1.3, 0.0, 100.0, false, ObstacleScanParams{}, kInvalidDisparity);
+  for (int x = 100; x < 540; x += 20) {
+    const core::DepthScanColumn& column = confused.columns[static_cast<std::size_t>(x)];
+    ASSERT_EQ(column.kind, Kind::free) << "column " << x;
+    EXPECT_NEAR(column.x_robot_m, 1.3, 0.05) << "column " << x;  // free up to the floor's end
+  }
+  ObstacleScanParams any_end;
+  any_end.blank_wall_untextured_fraction = 0.0;
+  const core::DepthScan unchecked = scan_of_wall(1.3, 0.0, 100.0, false, any_end, kInvalidDisparity);
+  EXPECT_EQ(unchecked.columns[320].kind, Kind::obstacle);
 }
 
 // Floor texture that fades 1.9 m from the camera under a blank ceiling: nothing is seen

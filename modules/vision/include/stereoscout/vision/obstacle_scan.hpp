@@ -34,8 +34,13 @@
 // corridor's walls: the robot drove into them). So a column with no obstacle whose floor
 // ends nearer than blank_wall_within_m, with no point off the floor seen farther than
 // same_surface_depth_m beyond that end (at any height: a far wall above the horizon, a
-// ceiling), reports an obstacle where its floor ends. Farther out the floor's texture fades
-// (the office's tiles at about 2 m, below a blank ceiling): its end there is not a wall.
+// ceiling), reports an obstacle where its floor ends, provided the view above that end is
+// blank: at least blank_wall_untextured_fraction of the left image's pixels from the floor's
+// end up to the horizon row were rejected by the matcher for lack of texture
+// (kUntexturedDisparity). The floor also ends where the matcher is confused, beside the edge
+// of a near object that the two cameras see differently, with open floor beyond; an obstacle
+// there closes a free passage. Farther out the floor's texture fades (the office's tiles at
+// about 2 m, below a blank ceiling): its end there is not a wall.
 // An obstacle column is also marked obstacle_at_camera_height when the column holds an
 // obstacle point within floor_tolerance_m of the camera's height no more than
 // same_surface_depth_m behind the obstacle: such an obstacle (a person, a wall) stays in view
@@ -70,6 +75,8 @@ struct ObstacleScanParams {
   // A column whose floor ends nearer than this with nothing seen beyond it reports an
   // obstacle where the floor ends (a blank wall); 0: never.
   double blank_wall_within_m = 1.5;
+  // ... and at least this fraction of the pixels above the floor's end are untextured.
+  double blank_wall_untextured_fraction = 0.5;
 };
 
 ObstacleScanParams scan_params_from_config(const core::VisionConfig& vision, const core::RobotConfig& robot);
@@ -95,12 +102,15 @@ class ObstacleScanner {
     int obstacle_points = 0;  // entries used in this column's slice of nearest_
     bool has_floor = false;
     Candidate farthest_floor;
+    int floor_end_x_left = 0;  // left-image pixel of farthest_floor
+    int floor_end_row = 0;
     double nearest_at_camera_height_m = 1e9;  // range of the nearest obstacle point there
     double farthest_off_floor_m = 0.0;        // range of the farthest point not on the floor
   };
   bool floor_ends_at_unseen_surface(const ColumnState& state) const;
+  bool blank_above_floor_end(const cv::Mat& disparity, const ColumnState& state) const;
   void reset_columns();
-  void add_point(int column, const Eigen::Vector3d& point, const Eigen::Vector3d& origin);
+  void add_point(int column, int x_left, int row, const Eigen::Vector3d& point, const Eigen::Vector3d& origin);
   void keep_nearest(ColumnState& state, Candidate* nearest, const Candidate& candidate) const;
 
   ObstacleScanParams params_;
@@ -111,6 +121,7 @@ class ObstacleScanner {
   std::vector<Candidate> nearest_;         // per column: its nearest obstacle points, sorted
   std::vector<float> floor_visible_from_m_;  // per column, from the calibration and mount
   std::vector<float> measurable_from_m_;     // per column, from the calibration and mount
+  int horizon_row_;                          // image row of level rays (mount tilt; nose down is up)
 };
 
 }  // namespace stereoscout::vision
