@@ -94,7 +94,7 @@ core::Status VisionFrontEnd::scan(const core::StereoFrame& frame, core::DepthSca
     return {core::StatusCode::invalid_input, "stereo pair is not 8-bit grey of the calibrated size"};
   }
   dense_.compute(frame.left, frame.right, disparity_);
-  scanner_.compute(disparity_, frame.pan_rad, frame.timestamp_ns, scan);
+  scanner_.compute(disparity_, frame.left, frame.pan_rad, frame.timestamp_ns, scan);
   return core::Status::success();
 }
 

@@ -20,6 +20,7 @@ ObstacleScanParams scan_params_from_config(const core::VisionConfig& vision, con
   params.unmatched_border_px = vision.dense_window_px / 2 + detail::kCensusRadius;
   params.blank_wall_within_m = vision.scan_blank_wall_within_m;
   params.blank_wall_untextured_fraction = vision.scan_blank_wall_untextured_fraction;
+  params.wall_base_min_step_grey = vision.scan_wall_base_min_step;
   return params;
 }
 
@@ -130,9 +131,44 @@ void ObstacleScanner::add_point(int column, int x_left, int row, const Eigen::Ve
 
 // The floor stops within range and nothing is seen beyond it, at any height: the view ends
 // at a surface stereo cannot measure (a blank wall).
+// No floor and no other point of the column was seen beyond range_m (give or take a surface's
+// depth): a blank surface standing there would hide everything behind it.
+bool ObstacleScanner::nothing_seen_beyond(const ColumnState& state, double range_m) const {
+  const double beyond = range_m + params_.same_surface_depth_m;
+  return state.farthest_off_floor_m <= beyond && (!state.has_floor || state.farthest_floor.range_m <= beyond);
+}
+
 bool ObstacleScanner::floor_ends_at_unseen_surface(const ColumnState& state) const {
   return state.farthest_floor.range_m < std::min(params_.blank_wall_within_m, params_.max_range_m) &&
-         state.farthest_off_floor_m <= state.farthest_floor.range_m + params_.same_surface_depth_m;
+         nothing_seen_beyond(state, state.farthest_floor.range_m);
+}
+
+// Files the base of a blank wall found in each left-image column under its right-image
+// column: on the floor plane, the base row's ray gives the depth, hence the disparity a floor
+// point there has and the right column it is seen in.
+void ObstacleScanner::add_wall_bases(const cv::Mat& disparity, const cv::Mat& left,
+                                     const Eigen::Isometry3d& robot_from_camera) {
+  const WallBaseParams wall_base{params_.wall_base_min_step_grey, params_.blank_wall_untextured_fraction};
+  const Eigen::Vector3d origin = robot_from_camera.translation();
+  const double within_m = std::min(params_.blank_wall_within_m, params_.max_range_m);
+  for (int x = 0; x < left.cols; ++x) {
+    const double row = find_wall_base_row(left, disparity, x, horizon_row_, wall_base);
+    if (row < 0.0) continue;
+    const Eigen::Vector3d down =
+        robot_from_camera.linear() * Eigen::Vector3d(0.0, (row - calibration_.principal_y_px) / calibration_.focal_px, 1.0);
+    if (!(down.z() < 0.0)) continue;
+    const double depth = -origin.z() / down.z();
+    const double d = calibration_.focal_px * calibration_.baseline_m / depth;
+    const double x_right = x - d;
+    const auto column = static_cast<int>(std::lround(x_right));
+    if (column < 0 || column >= left.cols) continue;
+    const Eigen::Vector3d point = robot_from_camera * triangulate_point(calibration_, x_right, row, d);
+    const double range = std::hypot(point.x() - origin.x(), point.y() - origin.y());
+    ColumnState& state = columns_[static_cast<std::size_t>(column)];
+    if (range >= within_m || (state.has_wall_base && range >= state.wall_base.range_m)) continue;
+    state.has_wall_base = true;
+    state.wall_base = {range, point.x(), point.y()};
+  }
 }
 
 // The left image above the floor's end, up to the horizon row, is mostly a surface without
@@ -147,11 +183,13 @@ bool ObstacleScanner::blank_above_floor_end(const cv::Mat& disparity, const Colu
   return pixels > 0 && untextured >= params_.blank_wall_untextured_fraction * pixels;
 }
 
-void ObstacleScanner::compute(const cv::Mat& disparity, double pan_rad, std::int64_t timestamp_ns,
-                              core::DepthScan& scan) {
+void ObstacleScanner::compute(const cv::Mat& disparity, const cv::Mat& left, double pan_rad,
+                              std::int64_t timestamp_ns, core::DepthScan& scan) {
   STEREOSCOUT_CHECK(disparity.type() == CV_32FC1 && disparity.cols == calibration_.width_px &&
                         scan.columns.size() == static_cast<std::size_t>(disparity.cols),
                     "ObstacleScanner::compute: disparity or scan not sized for this camera");
+  STEREOSCOUT_CHECK(left.empty() || (left.type() == CV_8UC1 && left.size() == disparity.size()),
+                    "ObstacleScanner::compute: the left image must be 8-bit grey of the disparity's size");
   const Eigen::Isometry3d robot_from_camera = core::robot_from_camera(mount_, pan_rad);
   const Eigen::Vector3d origin = robot_from_camera.translation();
   scan.timestamp_ns = timestamp_ns;
@@ -172,6 +210,7 @@ void ObstacleScanner::compute(const cv::Mat& disparity, double pan_rad, std::int
       add_point(column, x, y, robot_from_camera * triangulate_point(calibration_, x_right, y, d), origin);
     }
   }
+  if (!left.empty()) add_wall_bases(disparity, left, robot_from_camera);
   for (std::size_t column = 0; column < columns_.size(); ++column) {
     const ColumnState& state = columns_[column];
     core::DepthScanColumn& out = scan.columns[column];
@@ -185,6 +224,9 @@ void ObstacleScanner::compute(const cv::Mat& disparity, double pan_rad, std::int
       const bool at_camera_height = state.nearest_at_camera_height_m <= confirmed.range_m + params_.same_surface_depth_m;
       out = {static_cast<float>(confirmed.x_m), static_cast<float>(confirmed.y_m), core::DepthScanColumn::Kind::obstacle,
              visible_from, at_camera_height, measurable};
+    } else if (state.has_wall_base && nothing_seen_beyond(state, state.wall_base.range_m)) {
+      out = {static_cast<float>(state.wall_base.x_m), static_cast<float>(state.wall_base.y_m),
+             core::DepthScanColumn::Kind::obstacle, visible_from, false, measurable};
     } else if (state.has_floor && floor_ends_at_unseen_surface(state) && blank_above_floor_end(disparity, state)) {
       out = {static_cast<float>(state.farthest_floor.x_m), static_cast<float>(state.farthest_floor.y_m),
              core::DepthScanColumn::Kind::obstacle, visible_from, false, measurable};

@@ -164,6 +164,83 @@ TEST(ObstacleScan, ABlankWallIsAnObstacleWhereTheFloorEnds) {
   EXPECT_EQ(unaware.columns[320].kind, Kind::free);  // the wall's cell would stay unknown
 }
 
+// The left image of a scene of blank surfaces on a tiled floor: floor grey 120 or 140 by
+// 0.3 m tiles of depth, everything else 190 (the office's corridor wall against its tiles).
+cv::Mat blank_wall_image(const cv::Mat& left_depth, const StereoCalibration& camera) {
+  cv::Mat left(left_depth.size(), CV_8UC1, cv::Scalar(190));
+  for (int y = 0; y < left_depth.rows; ++y) {
+    for (int x = 0; x < left_depth.cols; ++x) {
+      const double z = left_depth.at<double>(y, x);
+      const double height = 0.6 - (y - camera.principal_y_px) * z / camera.focal_px;
+      // Floor pixels lie on the plane to rounding; the wall's lowest rows are a few mm up.
+      if (z > 0.0 && std::fabs(height) < 1e-6) left.at<std::uint8_t>(y, x) = (static_cast<int>(z / 0.3) % 2) ? 140 : 120;
+    }
+  }
+  return left;
+}
+
+// A blank wall across the view at wall_x_m, none of its floor matched (tile interiors: the
+// head-on office wall), scanned with the left image (or without, when `with_image` is false).
+core::DepthScan scan_of_wall_faced_head_on(double wall_x_m, bool with_image, const ObstacleScanParams& params = {}) {
+  test::Scene scene;
+  scene.boxes.push_back({{wall_x_m, -8.0, 0.0}, {wall_x_m + 0.1, 8.0, 2.5}});
+  StereoCalibration camera;
+  const test::Rendering view = test::render(scene, camera, paper_mount(), core::Pose2{});
+  ObstacleScanner scanner(params, camera, paper_mount());
+  core::DepthScan scan;
+  scanner.allocate(scan);
+  const cv::Mat left = with_image ? blank_wall_image(view.left_depth, camera) : cv::Mat();
+  scanner.compute(without_blank_pixels(view.left_depth, camera, 0.0, false), left, 0.0, 0, scan);
+  return scan;
+}
+
+TEST(ObstacleScan, ABlankWallFacedHeadOnStandsWhereItsBaseIs) {
+  // 1.4 m ahead of the camera: the floor's end gives nothing, the wall's base does, in the
+  // columns where it lies within 1.5 m on the floor (the middle 280, less a margin).
+  const core::DepthScan scan = scan_of_wall_faced_head_on(1.5, true);
+  for (int x = 200; x < 440; x += 20) {
+    const core::DepthScanColumn& column = scan.columns[static_cast<std::size_t>(x)];
+    ASSERT_EQ(column.kind, Kind::obstacle) << "column " << x;
+    EXPECT_NEAR(column.x_robot_m, 1.5, 0.02) << "column " << x;
+    // ... on the column's own ray from the right camera (image x to the right is robot y < 0).
+    const StereoCalibration camera;
+    EXPECT_NEAR(std::atan2(column.y_robot_m - scan.origin_robot.y(), column.x_robot_m - scan.origin_robot.x()),
+                -std::atan((x - camera.principal_x_px) / camera.focal_px), 0.01)
+        << "column " << x;
+  }
+  EXPECT_NE(scan.columns[40].kind, Kind::obstacle);  // 1.75 m away along the floor
+  EXPECT_EQ(scan_of_wall_faced_head_on(1.5, false).columns[320].kind, Kind::invalid);
+  ObstacleScanParams off;
+  off.wall_base_min_step_grey = 0.0;
+  EXPECT_EQ(scan_of_wall_faced_head_on(1.5, true, off).columns[320].kind, Kind::invalid);
+  // Beyond blank_wall_within_m (1.5 m on the floor from the camera) a step is no wall.
+  EXPECT_EQ(scan_of_wall_faced_head_on(1.7, true).columns[320].kind, Kind::invalid);
+}
+
+// A step in the floor's brightness where stereo matched the floor on beyond it (a bright
+// floor region: here the floor from 1.2 m on, matched up to 3 m) is no wall's base, even
+// when the run above it is taken as blank (untextured fraction 0).
+TEST(ObstacleScan, AWallBaseBeyondWhichStereoSeesFloorIsNoWall) {
+  test::Scene scene;
+  scene.boxes.push_back({{6.0, -8.0, 0.0}, {6.1, 8.0, 2.5}});
+  StereoCalibration camera;
+  const test::Rendering view = test::render(scene, camera, paper_mount(), core::Pose2{});
+  cv::Mat left = blank_wall_image(view.left_depth, camera);
+  for (int y = 0; y < left.rows; ++y) {
+    for (int x = 0; x < left.cols; ++x) {
+      if (view.left_depth.at<double>(y, x) > 1.2) left.at<std::uint8_t>(y, x) = 190;
+    }
+  }
+  ObstacleScanParams params;
+  params.blank_wall_untextured_fraction = 0.0;
+  ObstacleScanner scanner(params, camera, paper_mount());
+  core::DepthScan scan;
+  scanner.allocate(scan);
+  scanner.compute(without_blank_pixels(view.left_depth, camera, 3.0, false), left, 0.0, 0, scan);
+  EXPECT_EQ(scan.columns[320].kind, Kind::free);
+  EXPECT_NEAR(scan.columns[320].x_robot_m, 3.1, 0.05);
+}
+
 // The floor's matched part also ends where the matcher is confused on texture it could see
 // (beside the edge of a near object the two cameras see differently: the clutter hall's
 // dividing wall seen along its length), with open floor beyond. Nothing above that end was

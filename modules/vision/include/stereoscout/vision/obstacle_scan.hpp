@@ -41,6 +41,12 @@
 // of a near object that the two cameras see differently, with open floor beyond; an obstacle
 // there closes a free passage. Farther out the floor's texture fades (the office's tiles at
 // about 2 m, below a blank ceiling): its end there is not a wall.
+// Given the left image as well, a column with no obstacle looks first for the wall's base
+// (wall_base.hpp): the brightness step where a blank wall meets the floor, within
+// blank_wall_within_m on the floor plane. It puts the wall where it stands, not where the
+// matched floor happens to end, and it also finds walls faced head-on whose floor strip was
+// not matched at all. It must agree with the stereo: no floor or other point seen more than
+// same_surface_depth_m beyond it. Failing that, the floor's end as above.
 // An obstacle column is also marked obstacle_at_camera_height when the column holds an
 // obstacle point within floor_tolerance_m of the camera's height no more than
 // same_surface_depth_m behind the obstacle: such an obstacle (a person, a wall) stays in view
@@ -56,6 +62,7 @@
 #include "stereoscout/core/geometry.hpp"
 #include "stereoscout/core/messages.hpp"
 #include "stereoscout/vision/calibration.hpp"
+#include "stereoscout/vision/wall_base.hpp"
 
 namespace stereoscout::vision {
 
@@ -77,6 +84,8 @@ struct ObstacleScanParams {
   double blank_wall_within_m = 1.5;
   // ... and at least this fraction of the pixels above the floor's end are untextured.
   double blank_wall_untextured_fraction = 0.5;
+  // The brightness step at a blank wall's base (wall_base.hpp); 0: the floor's end only.
+  double wall_base_min_step_grey = 12.0;
 };
 
 ObstacleScanParams scan_params_from_config(const core::VisionConfig& vision, const core::RobotConfig& robot);
@@ -89,8 +98,14 @@ class ObstacleScanner {
   // Sizes scan.columns to one entry per image column (start-up only).
   void allocate(core::DepthScan& scan) const;
 
-  // disparity: CV_32FC1 referenced to the left image (DenseDisparityMatcher). No allocation.
-  void compute(const cv::Mat& disparity, double pan_rad, std::int64_t timestamp_ns, core::DepthScan& scan);
+  // disparity: CV_32FC1 referenced to the left image (DenseDisparityMatcher); left: the
+  // 8-bit grey left image it was matched from, for the walls' bases (empty: none, as for a
+  // disparity map that came from ground-truth depth). No allocation.
+  void compute(const cv::Mat& disparity, const cv::Mat& left, double pan_rad, std::int64_t timestamp_ns,
+               core::DepthScan& scan);
+  void compute(const cv::Mat& disparity, double pan_rad, std::int64_t timestamp_ns, core::DepthScan& scan) {
+    compute(disparity, cv::Mat(), pan_rad, timestamp_ns, scan);
+  }
 
  private:
   struct Candidate {
@@ -106,8 +121,12 @@ class ObstacleScanner {
     int floor_end_row = 0;
     double nearest_at_camera_height_m = 1e9;  // range of the nearest obstacle point there
     double farthest_off_floor_m = 0.0;        // range of the farthest point not on the floor
+    bool has_wall_base = false;
+    Candidate wall_base;                      // the nearest wall base filed under this column
   };
   bool floor_ends_at_unseen_surface(const ColumnState& state) const;
+  bool nothing_seen_beyond(const ColumnState& state, double range_m) const;
+  void add_wall_bases(const cv::Mat& disparity, const cv::Mat& left, const Eigen::Isometry3d& robot_from_camera);
   bool blank_above_floor_end(const cv::Mat& disparity, const ColumnState& state) const;
   void reset_columns();
   void add_point(int column, int x_left, int row, const Eigen::Vector3d& point, const Eigen::Vector3d& origin);
