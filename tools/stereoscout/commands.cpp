@@ -21,6 +21,7 @@ constexpr Command kCommands[] = {
     {"slam", "run the stereo front end and the filter on a KITTI odometry folder and score the trajectory", run_slam},
     {"eval-disparity", "dense disparity of a rectified pair scored against ground truth (JSON)", run_eval_disparity},
     {"eval-map", "score an occupancy map (map.yaml) against a ground-truth map (JSON)", run_eval_map},
+    {"eval-scan", "score the 2.5D obstacle scan on rendered views of a world against its obstacles (JSON)", run_eval_scan},
     {nullptr, nullptr, nullptr},
 };
 

@@ -31,6 +31,7 @@ int run_config(int argc, char** argv);
 int run_eval_disparity(int argc, char** argv);
 int run_eval_map(int argc, char** argv);
 int run_sim_render(int argc, char** argv);
+int run_eval_scan(int argc, char** argv);
 int run_world_map(int argc, char** argv);
 int run_explore_gt(int argc, char** argv);
 int run_landmark_slam(int argc, char** argv);

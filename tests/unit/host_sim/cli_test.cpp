@@ -56,6 +56,27 @@ TEST(SimCommands, WorldMapWritesMapServerFiles) {
   EXPECT_NE(output.find("reachable"), std::string::npos);
 }
 
+// The integer after `"key": ` in a JSON text, or -1.
+long long json_count(const std::string& text, const std::string& key) {
+  const std::size_t at = text.find("\"" + key + "\": ");
+  return at == std::string::npos ? -1 : std::stoll(text.substr(at + key.size() + 4));
+}
+
+// A few views of the office: the scan's columns placed against its walls. With the blank
+// walls' bases and the textured posters nearly every obstacle column stands on a wall.
+TEST(SimCommands, EvalScanPlacesTheScanAgainstTheWorld) {
+  std::string output;
+  ASSERT_EQ(run("eval-scan --world " + world_path("office.yaml") + " --grid 6 --headings 4", &output), 0) << output;
+  EXPECT_EQ(json_count(output, "views"), 32) << output;
+  const long long at = json_count(output, "within_0.1_m");
+  const long long phantoms = json_count(output, "in_free_space");
+  const long long all = at + json_count(output, "0.1_to_0.3_m") + json_count(output, "0.3_to_0.6_m") + phantoms;
+  EXPECT_GE(at, all * 90 / 100) << output;
+  EXPECT_LE(phantoms, all / 100) << output;
+  EXPECT_GE(json_count(output, "free_through_obstacle"), 0) << output;
+  EXPECT_EQ(run("eval-scan --world " + world_path("office.yaml") + " --headings 0", &output), 2);
+}
+
 TEST(SimCommands, BadWorldAndPoseAreReported) {
   const std::string bad = ::testing::TempDir() + "bad_world.yaml";
   std::ofstream(bad) << "start: [0, 0, 0]\nwalls:\n  - {points: [[0, 0], [1, 0]], colour: red}\n";
