@@ -129,8 +129,6 @@ void ObstacleScanner::add_point(int column, int x_left, int row, const Eigen::Ve
   // Points below the floor or above the robot are ignored.
 }
 
-// The floor stops within range and nothing is seen beyond it, at any height: the view ends
-// at a surface stereo cannot measure (a blank wall).
 // No floor and no other point of the column was seen beyond range_m (give or take a surface's
 // depth): a blank surface standing there would hide everything behind it.
 bool ObstacleScanner::nothing_seen_beyond(const ColumnState& state, double range_m) const {
@@ -138,6 +136,8 @@ bool ObstacleScanner::nothing_seen_beyond(const ColumnState& state, double range
   return state.farthest_off_floor_m <= beyond && (!state.has_floor || state.farthest_floor.range_m <= beyond);
 }
 
+// The floor stops within range and nothing is seen beyond it, at any height: the view ends
+// at a surface stereo cannot measure (a blank wall).
 bool ObstacleScanner::floor_ends_at_unseen_surface(const ColumnState& state) const {
   return state.farthest_floor.range_m < std::min(params_.blank_wall_within_m, params_.max_range_m) &&
          nothing_seen_beyond(state, state.farthest_floor.range_m);
