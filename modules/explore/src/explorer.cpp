@@ -247,15 +247,20 @@ void Explorer::finish_look(const ExploreInput& input) {
     return;
   }
   // Back to the goal (or the start) of before the look, on a plan made from the new views.
-  state_ = return_after_look_ ? ExploreState::returning : ExploreState::drive;
+  const ExploreState resumed = return_after_look_ ? ExploreState::returning : ExploreState::drive;
+  state_ = resumed;
   return_after_look_ = false;
   resume_after_look_ = false;
+  // The rebuild checks the old plan against the new views: it may fail the goal already, and
+  // a second try here would count a second failure of the same goal on the same map.
   rebuild(input);
-  if (!keep_progress_after_look_) {
+  const bool keep_progress = keep_progress_after_look_;
+  keep_progress_after_look_ = false;
+  if (state_ != resumed) return;
+  if (!keep_progress) {
     best_goal_distance_m_ = std::numeric_limits<double>::infinity();
     last_progress_time_s_ = input.time_s;
   }
-  keep_progress_after_look_ = false;
   if (!replan(input)) goal_failed(input);
 }
 

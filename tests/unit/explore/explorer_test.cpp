@@ -269,6 +269,25 @@ TEST(Explorer, ASafetyStopLooksAroundThenResumesTheSameGoal) {
   for (const Eigen::Vector2i& cell : explorer.plan().cells) EXPECT_NE(cell, Eigen::Vector2i(19, 30));
 }
 
+// The way is shut while the robot looks after a safety stop: the rebuild at the end of the
+// look finds the plan blocked and fails the goal once, not once more for the same map.
+TEST(Explorer, AGoalCutOffDuringALookFailsOnce) {
+  Corridor scene;
+  ExploreParams params = test_params(100, 60);
+  params.explore.return_to_start = false;
+  Explorer explorer(params);
+  complete_look(explorer, scene.grid.view(), 0.0);
+  ASSERT_EQ(explorer.state(), ExploreState::drive);
+  scene.grid.set(19, 30, CellState::occupied);
+  ASSERT_EQ(explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.1, false)).state, ExploreState::look_around);
+  scene.grid.fill(30, 1, 32, 59, CellState::occupied);
+  complete_look(explorer, scene.grid.view(), 0.2);
+  EXPECT_EQ(explorer.counters().replans, 1U);
+  EXPECT_EQ(explorer.counters().plan_failures, 1U);
+  EXPECT_EQ(explorer.counters().goal_failures, 1U);
+  EXPECT_EQ(explorer.state(), ExploreState::finished);  // nothing left on this side of the wall
+}
+
 TEST(Explorer, DoesNotPushDeeperIntoAnObstacleItGrazes) {
   Corridor scene;
   Explorer explorer(no_look_params(100, 60));
