@@ -184,7 +184,7 @@ std::string explore_gt_json(const std::string& world_name, const ExploreGtResult
                 "\"distance_from_start_m\": %.2f, \"finish\": \"%s\", \"final_state\": \"%s\", \"updates\": %llu, "
                 "\"goals_chosen\": %llu, \"goals_reached\": %llu, \"goals_abandoned\": %llu, \"goal_failures\": %llu, "
                 "\"goals_blacklisted\": %llu, \"plan_failures\": %llu, \"replans\": %llu, \"stuck\": %llu, "
-                "\"safety_stops\": %llu, \"stalls\": %llu, \"looks\": %llu, \"looks_before_giving_up\": %llu, \"return_failures\": %llu}",
+                "\"safety_stops\": %llu, \"stalls\": %llu, \"looks\": %llu, \"looks_before_giving_up\": %llu, \"return_failures\": %llu, \"contact_clears\": %llu}",
                 world_name.c_str(), result.coverage, time_to[0], time_to[1], result.reachable_cells, result.covered_cells,
                 static_cast<unsigned long long>(result.collisions),
                 static_cast<unsigned long long>(result.person_contacts), result.exploration_time_s, result.total_time_s,
@@ -196,7 +196,7 @@ std::string explore_gt_json(const std::string& world_name, const ExploreGtResult
                 static_cast<unsigned long long>(c.stuck), static_cast<unsigned long long>(c.safety_stops),
                 static_cast<unsigned long long>(c.stalls),
                 static_cast<unsigned long long>(c.looks), static_cast<unsigned long long>(c.looks_before_giving_up),
-                static_cast<unsigned long long>(c.return_failures));
+                static_cast<unsigned long long>(c.return_failures), static_cast<unsigned long long>(c.contact_clears));
   return buffer;
 }
 

@@ -218,6 +218,7 @@ void write_counters(report::JsonWriter& json, const stack::Stack& stack) {
       .unsigned_integer("stalls", e.stalls)
       .unsigned_integer("contact_cells_recorded", stack.explorer().contacts().recorded())
       .unsigned_integer("contact_cells_held", stack.explorer().contacts().held())
+      .unsigned_integer("contact_clears", e.contact_clears)
       .unsigned_integer("looks", e.looks)
       .end_object();
   const slam::FilterCounters& f = stack.filter().counters();

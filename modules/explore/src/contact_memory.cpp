@@ -77,6 +77,13 @@ bool ContactMemory::keep(const Contact& contact, const GridView& grid, double ti
   return true;
 }
 
+std::size_t ContactMemory::clear() {
+  const std::size_t held = contacts_.size();
+  contacts_.clear();
+  cleared_ += held;
+  return held;
+}
+
 GridView ContactMemory::stamp(const GridView& grid, double time_s) {
   // Forget first (swap with the last; the order of contacts does not matter).
   for (std::size_t i = 0; i < contacts_.size();) {

@@ -95,16 +95,32 @@ void Explorer::start(const ExploreInput& input) {
 
 void Explorer::rebuild(const ExploreInput& input) {
   rebuild_needed_ = false;
+  fresh_.observe(input.grid, input.time_s);
+  rebuild_map(input);
+  if (state_ == ExploreState::drive || state_ == ExploreState::returning) check_plan(input);
+}
+
+void Explorer::rebuild_map(const ExploreInput& input) {
   // Unknown cells may be crossed near the robot, and near the start on the way back: the robot
   // started in a disc the camera could not see (its floor was too near).
   const Eigen::Vector2d extra =
       state_ == ExploreState::returning ? position_of(start_pose_) : position_of(input.pose);
-  fresh_.observe(input.grid, input.time_s);
   planning_grid_ = contacts_.stamp(input.grid, input.time_s);
   planning_on_copy_ = planning_grid_.cells != input.grid.cells;
   map_.rebuild(planning_grid_, position_of(input.pose), extra);
   ++counters_.map_rebuilds;
-  if (state_ == ExploreState::drive || state_ == ExploreState::returning) check_plan(input);
+}
+
+// Contact cells lie where the pose estimate put the robot's rim, and a door whose jamb the robot
+// touched (a contact ahead, another backing out) can be closed by them for contact_hold_s.
+// So neither "nothing left" nor "no way back" is concluded on them: they are forgotten and the
+// map rebuilt first. True when there were any. A contact that was real is made again by the
+// next stall, and a goal behind it fails on stuck_timeout_s as before.
+bool Explorer::clear_contacts(const ExploreInput& input) {
+  if (contacts_.clear() == 0) return false;
+  ++counters_.contact_clears;
+  rebuild_map(input);
+  return true;
 }
 
 // After every observation update: is the rest of the plan still passable? Is the goal still
@@ -133,7 +149,9 @@ bool Explorer::replan(const ExploreInput& input) {
       map_.nearest_passable(goal_.cell, params_.explore.goal_shift_radius_m, target)) {
     ++counters_.goal_shifts;
   }
-  if (planner_.plan(map_, cell_of(input.pose), target, plan_) == PlanResult::found) {
+  if (planner_.plan(map_, cell_of(input.pose), target, plan_) == PlanResult::found ||
+      (state_ == ExploreState::returning && clear_contacts(input) &&
+       planner_.plan(map_, cell_of(input.pose), target, plan_) == PlanResult::found)) {
     fresh_look_ = false;  // the robot drives on: the next failure deserves a look of its own
     return true;
   }
@@ -152,6 +170,10 @@ void Explorer::choose_goal(const ExploreInput& input) {
         ++counters_.looks_before_giving_up;
         begin_look(input);
         return;
+      }
+      if (clear_contacts(input)) {
+        map_.compute_reachable(cell_of(input.pose));
+        continue;
       }
       finish_exploring(input, FinishReason::explored);
       return;

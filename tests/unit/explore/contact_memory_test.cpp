@@ -109,6 +109,19 @@ TEST(ContactMemory, ACellTheGridHeldFreeAtTheContactIsKeptUntilItExpires) {
   EXPECT_EQ(memory.expired(), 3U);
 }
 
+TEST(ContactMemory, ClearForgetsEveryContactAndCountsThem) {
+  TestGrid grid(60, 60, CellState::unknown);
+  ContactMemory memory(core::ExploreConfig{}, 60, 60);
+  memory.record(grid.view(), core::Pose2{3.02, 3.05, 0.0}, 0.35, 1.0);
+  ASSERT_EQ(memory.stamp(grid.view(), 2.0).at(34, 30), CellState::occupied);
+  EXPECT_EQ(memory.clear(), 3U);
+  EXPECT_EQ(memory.held(), 0U);
+  EXPECT_EQ(memory.cleared(), 3U);
+  EXPECT_EQ(memory.stamp(grid.view(), 3.0).cells, grid.view().cells);  // nothing left to stamp
+  EXPECT_EQ(memory.clear(), 0U);
+  EXPECT_EQ(memory.cleared(), 3U);
+}
+
 TEST(ContactMemory, AFullListCountsWhatItForgetsAndNothingAllocates) {
   TestGrid grid(60, 60, CellState::unknown);
   core::ExploreConfig config;

@@ -237,6 +237,74 @@ TEST(Explorer, AStallMarksTheContactAndThePlanLeadsAroundIt) {
   }
 }
 
+// A 10 x 6 m room split by a thin wall at x = 3 m with a 0.9 m door (rows 26-34); the unknown
+// beyond x = 8 m lies behind the door. The robot is narrower than the default (0.33 m) so that
+// no clearance lies on the lethal distance and the scene's passable cells are clear-cut.
+struct DoorScene {
+  TestGrid grid{100, 60, CellState::free};
+  DoorScene() {
+    grid.walls();
+    grid.fill(30, 1, 31, 26, CellState::occupied);
+    grid.fill(30, 35, 31, 59, CellState::occupied);
+    grid.fill(80, 1, 99, 59, CellState::unknown);
+  }
+};
+
+// Holds the robot still at (x, y) facing theta, commanding forward motion, until it stalls.
+double stall_at(Explorer& explorer, const GridView& grid, double x, double y, double theta, double time_s) {
+  const std::uint64_t stalls = explorer.counters().stalls;
+  for (double end = time_s + 5.0; explorer.counters().stalls == stalls && time_s < end;) {
+    time_s += 0.05;
+    explorer.step(input_at(grid, x, y, theta, time_s, false));
+  }
+  return time_s;
+}
+
+// The robot touches the jamb in the door: the contact cells close the door to it, and nothing
+// reachable is left on its side. It clears them rather than conclude "explored" at a closed door.
+TEST(Explorer, ContactsThatCloseTheOnlyDoorAreClearedBeforeConcluding) {
+  DoorScene scene;
+  ExploreParams params = no_look_params(100, 60);
+  params.robot_radius_m = 0.33;
+  Explorer explorer(params);
+  ASSERT_EQ(explorer.step(input_at(scene.grid.view(), 3.05, 3.05, 0.0, 0.0, true)).state, ExploreState::drive);
+  const double time_s = stall_at(explorer, scene.grid.view(), 3.05, 3.05, 0.0, 0.0);
+  ASSERT_EQ(explorer.counters().stalls, 1U);
+  ASSERT_EQ(explorer.contacts().held(), 3U);
+  // The next rebuild finds the plan blocked and no way through the door: the goal fails, no
+  // other goal is reachable, so the contacts are cleared and the goal behind the door is chosen.
+  const ExploreOutput next = explorer.step(input_at(scene.grid.view(), 3.05, 3.05, 0.0, time_s + 0.05, true));
+  EXPECT_EQ(explorer.counters().goal_failures, 1U);
+  EXPECT_EQ(explorer.counters().contact_clears, 1U);
+  EXPECT_EQ(explorer.contacts().held(), 0U);
+  EXPECT_EQ(explorer.contacts().cleared(), 3U);
+  EXPECT_EQ(explorer.finish_reason(), FinishReason::none);
+  EXPECT_EQ(next.state, ExploreState::drive);
+  EXPECT_GT(explorer.goal().position.x(), 3.5);
+}
+
+// On the way back the same contacts would leave no way back at all: they are cleared and the
+// return goes on through the door.
+TEST(Explorer, ContactsThatCloseTheWayBackAreClearedBeforeGivingItUp) {
+  DoorScene scene;
+  ExploreParams params = test_params(100, 60);
+  params.explore.pan_at_goal = false;
+  params.explore.time_limit_s = 10.0;
+  params.robot_radius_m = 0.33;
+  Explorer explorer(params);
+  ASSERT_EQ(explorer.step(input_at(scene.grid.view(), 1.5, 3.05, 0.0, 0.0, true)).state, ExploreState::drive);
+  ASSERT_EQ(explorer.step(input_at(scene.grid.view(), 3.05, 3.05, core::kPi, 10.0, true)).state,
+            ExploreState::returning);
+  const double time_s = stall_at(explorer, scene.grid.view(), 3.05, 3.05, core::kPi, 10.0);
+  ASSERT_EQ(explorer.counters().stalls, 1U);
+  const ExploreOutput next = explorer.step(input_at(scene.grid.view(), 3.05, 3.05, core::kPi, time_s + 0.05, true));
+  EXPECT_EQ(explorer.counters().contact_clears, 1U);
+  EXPECT_EQ(explorer.counters().return_failures, 0U);
+  EXPECT_EQ(next.state, ExploreState::returning);
+  ASSERT_FALSE(explorer.plan().empty());
+  EXPECT_EQ(explorer.plan().cells[explorer.plan().cells.size() - 1], Eigen::Vector2i(15, 30));
+}
+
 // Steps through a look with the pan unit reaching each target at once.
 void complete_look(Explorer& explorer, const GridView& grid, double time_s) {
   for (const double pan_deg : {0.0, 90.0, 180.0, -90.0, 0.0}) {

@@ -18,6 +18,10 @@
 // occupied at the contact: a person who stood there has walked on. (A cell the grid held free
 // at the contact is wrong in the grid, a surface it cannot see: only the time limit ends it.)
 // Both rules depend on simulated time and the grid only, so runs stay reproducible.
+//
+// The contact cells are where the pose estimate put the rim, so they can close a door the robot
+// touched a jamb of (a contact ahead, another backing out): the explorer clears them before it
+// concludes that nothing is left or gives the return up (clear()).
 
 #include <cstdint>
 #include <memory>
@@ -64,12 +68,15 @@ class ContactMemory {
   // a copy in the memory's own buffer, or `grid` itself when there is no contact (or it is
   // larger than the buffer, counted). Valid until the next call.
   GridView stamp(const GridView& grid, double time_s);
+  // Forgets every contact; returns how many there were.
+  std::size_t clear();
 
   std::size_t held() const { return contacts_.size(); }
   std::uint64_t recorded() const { return recorded_; }
   std::uint64_t forgotten_full() const { return forgotten_full_; }  // the list was full
   std::uint64_t freed() const { return freed_; }                    // seen free later
   std::uint64_t expired() const { return expired_; }
+  std::uint64_t cleared() const { return cleared_; }
   std::uint64_t grid_too_large() const { return grid_too_large_; }
 
  private:
@@ -89,6 +96,7 @@ class ContactMemory {
   std::uint64_t forgotten_full_ = 0;
   std::uint64_t freed_ = 0;
   std::uint64_t expired_ = 0;
+  std::uint64_t cleared_ = 0;
   std::uint64_t grid_too_large_ = 0;
 };
 

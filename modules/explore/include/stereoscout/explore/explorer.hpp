@@ -78,6 +78,7 @@ struct ExploreCounters {
   std::uint64_t looks = 0;
   std::uint64_t return_failures = 0;  // no way back or no progress on it; given up at goal_failures_before_blacklist
   std::uint64_t looks_before_giving_up = 0;  // no goal, or no way back: one more look first
+  std::uint64_t contact_clears = 0;  // contacts forgotten before concluding "explored" or "no way back"
 };
 
 class Explorer {
@@ -98,6 +99,8 @@ class Explorer {
  private:
   void start(const ExploreInput& input);
   void rebuild(const ExploreInput& input);
+  void rebuild_map(const ExploreInput& input);
+  bool clear_contacts(const ExploreInput& input);
   void check_plan(const ExploreInput& input);
   bool replan(const ExploreInput& input);
   void choose_goal(const ExploreInput& input);
