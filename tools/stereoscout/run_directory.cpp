@@ -216,6 +216,7 @@ void write_counters(report::JsonWriter& json, const stack::Stack& stack) {
       .unsigned_integer("safety_stops", e.safety_stops)
       .unsigned_integer("turns_to_face_plan", e.turns_to_face_plan)
       .unsigned_integer("stalls", e.stalls)
+      .unsigned_integer("back_offs", e.back_offs)
       .unsigned_integer("contact_cells_recorded", stack.explorer().contacts().recorded())
       .unsigned_integer("contact_cells_held", stack.explorer().contacts().held())
       .unsigned_integer("contact_clears", e.contact_clears)

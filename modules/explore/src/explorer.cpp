@@ -65,6 +65,15 @@ ExploreOutput Explorer::step(const ExploreInput& input) {
     stall_.commanded(input.time_s, position_of(input.pose), 0.0);
     return output;
   }
+  if (backing_off_) {
+    // Away from the contact first; the map is rebuilt and the plan checked after the look.
+    rebuild_needed_ = rebuild_needed_ || input.grid_updated;
+    if (!back_off_step(input, output)) stop_and_look(input, output, 0.0);
+    output.pan_target_rad = pan_target_rad_;
+    output.state = state_;
+    stall_.commanded(input.time_s, position_of(input.pose), output.drive.linear_mps);
+    return output;
+  }
   if (input.grid_updated || rebuild_needed_) rebuild(input);
   const bool exploring = (state_ == ExploreState::look_around && !return_after_look_) ||
                          state_ == ExploreState::choose_goal || state_ == ExploreState::drive;
@@ -316,6 +325,14 @@ void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
     // Pushing against something no view showed: keep its cells and plan around them.
     ++counters_.stalls;
     contacts_.record(map_.grid(), input.pose, params_.robot_radius_m, input.time_s);
+    if (params_.explore.stall_back_off_m > 0.0) {
+      ++counters_.back_offs;
+      backing_off_ = true;
+      back_off_from_ = position_of(input.pose);
+      back_off_start_s_ = input.time_s;
+      back_off_step(input, output);
+      return;
+    }
     stop_and_look(input, output, 0.0);
     return;
   }
@@ -369,6 +386,25 @@ void Explorer::stop_and_look(const ExploreInput& input, ExploreOutput& output, d
     return;
   }
   output.drive.angular_rad_s = turn_rad_s;
+}
+
+// Straight back at top speed, while the disc just behind is clear in the planning grid (the
+// camera looks ahead, so the grid is all there is to go by), until stall_back_off_m is covered
+// or twice the time it needs has passed (something behind that no view showed). False when done.
+bool Explorer::back_off_step(const ExploreInput& input, ExploreOutput& output) {
+  const double distance = params_.explore.stall_back_off_m;
+  const Eigen::Vector2d robot = position_of(input.pose);
+  const Eigen::Vector2d behind = robot - kAheadCheck_m * Eigen::Vector2d(std::cos(input.pose.theta), std::sin(input.pose.theta));
+  const GridView& grid = planning_on_copy_ ? planning_grid_ : input.grid;
+  const bool done = (robot - back_off_from_).norm() >= distance ||
+                    input.time_s - back_off_start_s_ > 2.0 * distance / params_.max_speed_mps ||
+                    !disc_is_clear(grid, behind, robot, input.time_s);
+  if (done) {
+    backing_off_ = false;
+    return false;
+  }
+  output.drive.linear_mps = -params_.max_speed_mps;
+  return true;
 }
 
 bool Explorer::disc_is_clear(const GridView& grid, const Eigen::Vector2d& centre, const Eigen::Vector2d& robot,

@@ -214,7 +214,8 @@ TEST(Explorer, StopsBeforeAnOccupiedCellAheadEvenBeforeTheMapIsRebuilt) {
 // planning, and the next plan leads around it.
 TEST(Explorer, AStallMarksTheContactAndThePlanLeadsAroundIt) {
   Corridor scene;
-  const ExploreParams params = no_look_params(100, 60);
+  ExploreParams params = no_look_params(100, 60);
+  params.explore.stall_back_off_m = 0.0;  // replans where it stands (the back-off: below)
   Explorer explorer(params);
   ASSERT_GT(explorer.step(input_at(scene.grid.view(), 1.52, 3.0, 0.0, 0.0, true)).drive.linear_mps, 0.0);
   double time_s = 0.0;
@@ -250,14 +251,16 @@ struct DoorScene {
   }
 };
 
-// Holds the robot still at (x, y) facing theta, commanding forward motion, until it stalls.
-double stall_at(Explorer& explorer, const GridView& grid, double x, double y, double theta, double time_s) {
+// Holds the robot still at (x, y) facing theta, commanding forward motion, until it stalls;
+// returns the output of the tick that found the stall (time_s: that tick's time).
+ExploreOutput stall_at(Explorer& explorer, const GridView& grid, double x, double y, double theta, double& time_s) {
   const std::uint64_t stalls = explorer.counters().stalls;
-  for (double end = time_s + 5.0; explorer.counters().stalls == stalls && time_s < end;) {
+  ExploreOutput output;
+  for (const double end = time_s + 5.0; explorer.counters().stalls == stalls && time_s < end;) {
     time_s += 0.05;
-    explorer.step(input_at(grid, x, y, theta, time_s, false));
+    output = explorer.step(input_at(grid, x, y, theta, time_s, false));
   }
-  return time_s;
+  return output;
 }
 
 // The robot touches the jamb in the door: the contact cells close the door to it, and nothing
@@ -266,9 +269,11 @@ TEST(Explorer, ContactsThatCloseTheOnlyDoorAreClearedBeforeConcluding) {
   DoorScene scene;
   ExploreParams params = no_look_params(100, 60);
   params.robot_radius_m = 0.33;
+  params.explore.stall_back_off_m = 0.0;
   Explorer explorer(params);
   ASSERT_EQ(explorer.step(input_at(scene.grid.view(), 3.05, 3.05, 0.0, 0.0, true)).state, ExploreState::drive);
-  const double time_s = stall_at(explorer, scene.grid.view(), 3.05, 3.05, 0.0, 0.0);
+  double time_s = 0.0;
+  stall_at(explorer, scene.grid.view(), 3.05, 3.05, 0.0, time_s);
   ASSERT_EQ(explorer.counters().stalls, 1U);
   ASSERT_EQ(explorer.contacts().held(), 3U);
   // The next rebuild finds the plan blocked and no way through the door: the goal fails, no
@@ -291,11 +296,13 @@ TEST(Explorer, ContactsThatCloseTheWayBackAreClearedBeforeGivingItUp) {
   params.explore.pan_at_goal = false;
   params.explore.time_limit_s = 10.0;
   params.robot_radius_m = 0.33;
+  params.explore.stall_back_off_m = 0.0;
   Explorer explorer(params);
   ASSERT_EQ(explorer.step(input_at(scene.grid.view(), 1.5, 3.05, 0.0, 0.0, true)).state, ExploreState::drive);
   ASSERT_EQ(explorer.step(input_at(scene.grid.view(), 3.05, 3.05, core::kPi, 10.0, true)).state,
             ExploreState::returning);
-  const double time_s = stall_at(explorer, scene.grid.view(), 3.05, 3.05, core::kPi, 10.0);
+  double time_s = 10.0;
+  stall_at(explorer, scene.grid.view(), 3.05, 3.05, core::kPi, time_s);
   ASSERT_EQ(explorer.counters().stalls, 1U);
   const ExploreOutput next = explorer.step(input_at(scene.grid.view(), 3.05, 3.05, core::kPi, time_s + 0.05, true));
   EXPECT_EQ(explorer.counters().contact_clears, 1U);
@@ -354,6 +361,53 @@ TEST(Explorer, AGoalCutOffDuringALookFailsOnce) {
   EXPECT_EQ(explorer.counters().plan_failures, 1U);
   EXPECT_EQ(explorer.counters().goal_failures, 1U);
   EXPECT_EQ(explorer.state(), ExploreState::finished);  // nothing left on this side of the wall
+}
+
+// After a stall the robot backs straight off the contact before it looks and replans: from
+// the point of contact the plan leads into the same contact (a jamb grazed with the side).
+TEST(Explorer, BacksOffAfterAStallThenLooks) {
+  Corridor scene;
+  ExploreParams params = test_params(100, 60);
+  params.explore.return_to_start = false;
+  Explorer explorer(params);
+  complete_look(explorer, scene.grid.view(), 0.0);
+  ASSERT_EQ(explorer.state(), ExploreState::drive);
+  double time_s = 0.0;
+  EXPECT_EQ(stall_at(explorer, scene.grid.view(), 1.5, 3.0, 0.0, time_s).drive.linear_mps, -params.max_speed_mps);
+  ASSERT_EQ(explorer.counters().back_offs, 1U);
+  double x = 1.5;
+  for (int tick = 0; tick < 30; ++tick) {
+    time_s += 0.05;
+    const ExploreOutput output = explorer.step(input_at(scene.grid.view(), x, 3.0, 0.0, time_s, false));
+    if (output.drive.linear_mps >= 0.0) break;
+    EXPECT_EQ(output.drive.linear_mps, -params.max_speed_mps);
+    x += output.drive.linear_mps * 0.05;
+  }
+  EXPECT_NEAR(x, 1.5 - params.explore.stall_back_off_m, 0.01);
+  EXPECT_EQ(explorer.state(), ExploreState::look_around);
+  EXPECT_EQ(explorer.counters().stalls, 1U);
+}
+
+// Backing off is blind but for the grid: it stops short where the disc behind would touch an
+// occupied cell, and after twice its time when the robot does not move.
+TEST(Explorer, BacksOffOnlyIntoClearSpaceAndForALimitedTime) {
+  const ExploreParams params = no_look_params(100, 60);
+  Corridor walled;
+  walled.grid.fill(10, 1, 12, 59, CellState::occupied);  // a wall whose cells lie 0.45 m behind
+  Explorer explorer(params);
+  explorer.step(input_at(walled.grid.view(), 1.5, 3.0, 0.0, 0.0, true));
+  double time_s = 0.0;
+  EXPECT_EQ(stall_at(explorer, walled.grid.view(), 1.5, 3.0, 0.0, time_s).drive.linear_mps, 0.0);
+  EXPECT_EQ(explorer.counters().back_offs, 1U);
+  // In open space, held still: backing off ends after 2 * 0.15 / 0.12 = 2.5 s.
+  Corridor open;
+  Explorer held(params);
+  held.step(input_at(open.grid.view(), 1.5, 3.0, 0.0, 0.0, true));
+  time_s = 0.0;
+  ASSERT_LT(stall_at(held, open.grid.view(), 1.5, 3.0, 0.0, time_s).drive.linear_mps, 0.0);
+  const double started_s = time_s;
+  while (held.step(input_at(open.grid.view(), 1.5, 3.0, 0.0, time_s, false)).drive.linear_mps < 0.0) time_s += 0.05;
+  EXPECT_NEAR(time_s - started_s, 2.0 * params.explore.stall_back_off_m / params.max_speed_mps, 0.06);
 }
 
 TEST(Explorer, DoesNotPushDeeperIntoAnObstacleItGrazes) {

@@ -78,6 +78,7 @@ struct ExploreCounters {
   std::uint64_t looks = 0;
   std::uint64_t return_failures = 0;  // no way back or no progress on it; given up at goal_failures_before_blacklist
   std::uint64_t looks_before_giving_up = 0;  // no goal, or no way back: one more look first
+  std::uint64_t back_offs = 0;       // backed off after a stall
   std::uint64_t contact_clears = 0;  // contacts forgotten before concluding "explored" or "no way back"
 };
 
@@ -111,6 +112,7 @@ class Explorer {
   void look_step(const ExploreInput& input, ExploreOutput& output);
   void drive_step(const ExploreInput& input, ExploreOutput& output);
   void stop_and_look(const ExploreInput& input, ExploreOutput& output, double turn_rad_s);
+  bool back_off_step(const ExploreInput& input, ExploreOutput& output);
   bool stretch_is_clear(const GridView& grid, const core::Pose2& pose, double time_s) const;
   bool turn_to_face_plan(const GridView& grid, const core::Pose2& pose, double time_s, ExploreOutput& output);
   bool disc_is_clear(const GridView& grid, const Eigen::Vector2d& centre, const Eigen::Vector2d& robot,
@@ -143,6 +145,10 @@ class Explorer {
   double look_turned_rad_ = 0.0;
   double look_last_heading_ = 0.0;
   double pan_target_rad_ = 0.0;
+  // Backing off after a stall.
+  bool backing_off_ = false;
+  Eigen::Vector2d back_off_from_ = Eigen::Vector2d::Zero();
+  double back_off_start_s_ = 0.0;
   bool fresh_look_ = false;         // a look ended here and no plan has been found since
   bool return_after_look_ = false;  // after the look: back on the way to the start
   bool resume_after_look_ = false;  // after the look: back on the way to the same goal

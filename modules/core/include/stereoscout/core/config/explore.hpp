@@ -34,6 +34,7 @@ struct ExploreConfig {
   double stall_window_s = 1.0;
   double stall_min_commanded_m = 0.04;
   double stall_progress_fraction = 0.25;
+  double stall_back_off_m = 0.15;
   double contact_arc_deg = 25.0;
   int contact_memory = 256;
   double contact_hold_s = 600.0;
@@ -73,6 +74,7 @@ inline void describe(ConfigVisitor& v, ExploreConfig& c) {
   v.number("stall_window_s", c.stall_window_s, {0.1, 60.0, "s", "Stall detector: the commanded forward travel and the travel the pose shows (odometry between updates) are compared over windows this long."});
   v.number("stall_min_commanded_m", c.stall_min_commanded_m, {0.001, 10.0, "m", "Stall detector: a window is judged only when at least this much forward travel was commanded in it."});
   v.number("stall_progress_fraction", c.stall_progress_fraction, {0.0, 1.0, "", "Stall detector: the robot is stalled (pushing against something it did not see) when it moved less than this fraction of the commanded travel."});
+  v.number("stall_back_off_m", c.stall_back_off_m, {0.0, 2.0, "m", "After a stall the robot backs off this far at its top speed (while the disc behind is clear in the grid, and for at most twice the time it needs) before it looks and replans: a plan from the point of contact leads into the same contact. 0 = off; not in the paper."});
   v.number("contact_arc_deg", c.contact_arc_deg, {0.0, 90.0, "deg", "A stall marks the cells just beyond the robot's rim straight ahead and this far to either side as occupied for planning."});
   v.integer_field("contact_memory", c.contact_memory, {1, 100000, "cells", "Contact cells remembered (fixed list; when full, new ones are counted and forgotten)."});
   v.number("contact_hold_s", c.contact_hold_s, {1.0, 1e7, "s", "A contact cell is forgotten after this long, or earlier when the grid sees its cell free after holding it unknown or occupied (a person who walked on)."});
