@@ -102,7 +102,7 @@ TEST_F(StackRun, SameSeedSameOutputsNoHeapInLoopAndEveryReportKey) {
   const std::string a = report("a");
   const std::map<std::string, std::string> digests = output_digests(a);
   for (const char* file : {"map.pgm", "map.yaml", "map.png", "trajectory.tum", "odometry.tum", "groundtruth.tum",
-                           "landmarks.ply", "sensors.log"}) {
+                           "landmarks.ply", "explore_events.csv", "sensors.log"}) {
     ASSERT_EQ(digests.count(file), 1U) << file << " missing from outputs_sha256\n" << a;
     EXPECT_EQ(digests.at(file).size(), 64U) << file;
   }

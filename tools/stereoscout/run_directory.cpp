@@ -131,6 +131,19 @@ std::string write_maps(const stack::Stack& stack, const core::SystemConfig& conf
   return write_map_png(map, overlays, out + "/map.png");
 }
 
+// The explorer's journal, oldest event first (docs/report.md, "explore_events.csv").
+std::string explore_events_csv(const explore::ExploreJournal& journal) {
+  std::string text = "time_s,event,x_m,y_m,theta_rad,goal_x_m,goal_y_m,goal_value\n";
+  char line[160];
+  for (std::size_t i = 0; i < journal.size(); ++i) {
+    const explore::ExploreEvent& e = journal[i];
+    std::snprintf(line, sizeof line, "%.2f,%s,%.3f,%.3f,%.4f,%.3f,%.3f,%.2f\n", e.time_s, explore::to_string(e.kind),
+                  e.pose.x, e.pose.y, e.pose.theta, e.goal.x(), e.goal.y(), e.goal_value);
+    text += line;
+  }
+  return text;
+}
+
 void write_timing(report::JsonWriter& json, const scheduler::Scheduler& scheduler) {
   json.begin_object("timing");
   for (std::size_t i = 0; i < scheduler.task_count(); ++i) {
@@ -221,6 +234,8 @@ void write_counters(report::JsonWriter& json, const stack::Stack& stack) {
       .unsigned_integer("contact_cells_held", stack.explorer().contacts().held())
       .unsigned_integer("contact_clears", e.contact_clears)
       .unsigned_integer("looks", e.looks)
+      .unsigned_integer("events_recorded", stack.explorer().journal().recorded())
+      .unsigned_integer("events_dropped", stack.explorer().journal().dropped())
       .end_object();
   const slam::FilterCounters& f = stack.filter().counters();
   json.begin_object("filter")
@@ -330,13 +345,15 @@ std::string write_run_directory(const stack::Stack& stack, const core::SystemCon
   score.landmarks = slam::write_landmarks_ply(ply, stack.filter().landmarks(), stack.filter().ml_map(),
                                               static_cast<std::uint32_t>(config.filter.export_min_observations));
   if (!write_text(out + "/landmarks.ply", ply.str(), error)) return error;
+  if (!write_text(out + "/explore_events.csv", explore_events_csv(stack.explorer().journal()), error)) return error;
   occupancy::RosMap map;
   error = write_maps(stack, config, out, map);
   if (!error.empty()) return error;
   score_trajectories(stack, score);
   score_map(stack, config, context, score);
   std::map<std::string, std::string> digests;
-  std::vector<std::string> files = {"map.pgm", "map.yaml", "map.png", "trajectory.tum", "odometry.tum", "landmarks.ply"};
+  std::vector<std::string> files = {"map.pgm",      "map.yaml",      "map.png",
+                                    "trajectory.tum", "odometry.tum", "landmarks.ply", "explore_events.csv"};
   if (every_update_has_truth(stack)) files.push_back("groundtruth.tum");
   if (!context.log_file.empty()) files.push_back(context.log_file);
   for (const std::string& file : files) digests[file] = sha256_of_file(out + "/" + file);

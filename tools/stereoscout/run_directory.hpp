@@ -2,8 +2,9 @@
 // The run directory of design.md section 4, written at the end of `explore`, `replay` and
 // `run`: map.pgm + map.yaml (final map of the ML trajectory), map.png (map, estimated
 // trajectory, raw odometry, last plan), trajectory.tum, odometry.tum, groundtruth.tum (when
-// the true pose is known), landmarks.ply, and report.json (docs/report.md) with a SHA-256 of
-// every other file, the sensor log included when it is in the directory.
+// the true pose is known), landmarks.ply, explore_events.csv (the explorer's journal), and
+// report.json (docs/report.md) with a SHA-256 of every other file, the sensor log included
+// when it is in the directory.
 
 #include <array>
 #include <cstdint>

@@ -45,11 +45,22 @@ Explorer::Explorer(const ExploreParams& params)
       stall_(params.explore),
       contacts_(params.explore, params.max_width, params.max_height),
       fresh_(params.explore, params.max_width, params.max_height),
+      journal_(static_cast<std::size_t>(params.explore.event_memory)),
       planner_(params),
       follower_(params),
       plan_(static_cast<std::size_t>(params.explore.max_plan_waypoints)) {}
 
 Eigen::Vector2i Explorer::cell_of(const core::Pose2& pose) const { return map_.grid().cell_of(position_of(pose)); }
+
+void Explorer::note(ExploreEventKind kind, const ExploreInput& input) {
+  ExploreEvent event;
+  event.time_s = input.time_s;
+  event.kind = kind;
+  event.pose = input.pose;
+  event.goal = goal_.position;
+  event.goal_value = goal_.value;
+  journal_.record(event);
+}
 
 ExploreOutput Explorer::step(const ExploreInput& input) {
   if (!started_) start(input);
@@ -128,6 +139,7 @@ void Explorer::rebuild_map(const ExploreInput& input) {
 bool Explorer::clear_contacts(const ExploreInput& input) {
   if (contacts_.clear() == 0) return false;
   ++counters_.contact_clears;
+  note(ExploreEventKind::contacts_cleared, input);
   rebuild_map(input);
   return true;
 }
@@ -138,6 +150,7 @@ void Explorer::check_plan(const ExploreInput& input) {
   if (state_ == ExploreState::drive &&
       goal_value_.value(map_, goal_.cell.x(), goal_.cell.y()) <= params_.explore.min_goal_value) {
     ++counters_.goals_abandoned;
+    note(ExploreEventKind::goal_abandoned, input);
     plan_.clear();
     state_ = ExploreState::choose_goal;
     return;
@@ -145,6 +158,7 @@ void Explorer::check_plan(const ExploreInput& input) {
   for (std::size_t k = follower_.progress() + 1; k < plan_.cells.size(); ++k) {
     if (!map_.passable(plan_.cells[k].x(), plan_.cells[k].y())) {
       ++counters_.replans;
+      note(ExploreEventKind::plan_blocked, input);
       if (!replan(input)) goal_failed(input);
       return;
     }
@@ -165,6 +179,7 @@ bool Explorer::replan(const ExploreInput& input) {
     return true;
   }
   ++counters_.plan_failures;
+  note(ExploreEventKind::no_plan, input);
   return false;
 }
 
@@ -189,6 +204,7 @@ void Explorer::choose_goal(const ExploreInput& input) {
     }
     ++counters_.goals_chosen;
     goal_ = goal;
+    note(ExploreEventKind::goal_chosen, input);
     if (replan(input)) {
       state_ = ExploreState::drive;
       best_goal_distance_m_ = std::numeric_limits<double>::infinity();
@@ -201,6 +217,7 @@ void Explorer::choose_goal(const ExploreInput& input) {
 
 void Explorer::finish_exploring(const ExploreInput& input, FinishReason reason) {
   finish_reason_ = reason;
+  note(reason == FinishReason::time_limit ? ExploreEventKind::time_limit : ExploreEventKind::explored, input);
   resume_after_look_ = false;
   plan_.clear();
   pan_target_rad_ = 0.0;
@@ -226,6 +243,7 @@ void Explorer::goal_failed(const ExploreInput& input) {
     // try again, up to goal_failures_before_blacklist failures in all (a stuck return that
     // replans after every look must end too).
     ++counters_.return_failures;
+    note(ExploreEventKind::return_failed, input);
     if (params_.explore.pan_at_goal && counters_.return_failures < static_cast<std::uint64_t>(
                                                                        params_.explore.goal_failures_before_blacklist)) {
       ++counters_.looks_before_giving_up;
@@ -238,12 +256,17 @@ void Explorer::goal_failed(const ExploreInput& input) {
     return;
   }
   ++counters_.goal_failures;
-  if (memory_.record_failure(goal_.position)) counters_.goals_blacklisted = memory_.blacklisted();
+  note(ExploreEventKind::goal_failed, input);
+  if (memory_.record_failure(goal_.position)) {
+    counters_.goals_blacklisted = memory_.blacklisted();
+    note(ExploreEventKind::goal_blacklisted, input);
+  }
   state_ = ExploreState::choose_goal;
 }
 
 void Explorer::begin_look(const ExploreInput& input) {
   ++counters_.looks;
+  note(ExploreEventKind::look, input);
   state_ = ExploreState::look_around;
   look_step_ = 0;
   look_turned_rad_ = 0.0;
@@ -300,10 +323,12 @@ void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
   if (follow.reached) {
     plan_.clear();
     if (state_ == ExploreState::returning) {
+      note(ExploreEventKind::returned, input);
       state_ = ExploreState::finished;
       return;
     }
     ++counters_.goals_reached;
+    note(ExploreEventKind::goal_reached, input);
     memory_.record_visit(goal_.position);
     if (params_.explore.pan_at_goal) {
       begin_look(input);
@@ -318,12 +343,14 @@ void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
     last_progress_time_s_ = input.time_s;
   } else if (input.time_s - last_progress_time_s_ > params_.explore.stuck_timeout_s) {
     ++counters_.stuck;
+    note(ExploreEventKind::stuck, input);
     goal_failed(input);
     return;
   }
   if (stalled_) {
     // Pushing against something no view showed: keep its cells and plan around them.
     ++counters_.stalls;
+    note(ExploreEventKind::stall, input);
     contacts_.record(map_.grid(), input.pose, params_.robot_radius_m, input.time_s);
     if (params_.explore.stall_back_off_m > 0.0) {
       ++counters_.back_offs;
@@ -342,6 +369,7 @@ void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
   if (follow.command.linear_mps > 0.0 && !stretch_is_clear(grid, input.pose, input.time_s)) {
     if (turn_to_face_plan(grid, input.pose, input.time_s, output)) return;
     ++counters_.safety_stops;
+    note(ExploreEventKind::safety_stop, input);
     stop_and_look(input, output, follow.command.angular_rad_s);
     return;
   }

@@ -1,6 +1,7 @@
 // The exploration behaviour on hand-made grids: replanning, blacklisting, safety stops,
 // the emergency stop, the look around, termination, and no allocation in step().
 #include <cmath>
+#include <cstdint>
 
 #include <gtest/gtest.h>
 
@@ -458,6 +459,65 @@ TEST(Explorer, BlacklistsGoalsThatKeepFailingThenFinishes) {
   EXPECT_GT(counters.goals_blacklisted, 0U);
   EXPECT_EQ(counters.goal_failures, counters.goals_blacklisted * 3U);
   EXPECT_EQ(counters.plan_failures, counters.goal_failures);
+}
+
+// The journal tells the same story as the counters, goal by goal: each chosen goal fails for
+// want of a plan, the third failure of a goal blacklists it, and the run ends "explored".
+TEST(Explorer, TheJournalRecordsWhyEachGoalFailed) {
+  Corridor scene;
+  ExploreParams params = no_look_params(100, 60);
+  params.explore.max_plan_waypoints = 3;
+  Explorer explorer(params);
+  for (int tick = 0; tick < 200 && explorer.state() != ExploreState::finished; ++tick) {
+    explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.1 * tick, tick == 0));
+  }
+  const ExploreJournal& journal = explorer.journal();
+  const ExploreCounters& counters = explorer.counters();
+  ASSERT_GT(journal.size(), 4U);
+  EXPECT_EQ(journal.dropped(), 0U);
+  std::uint64_t chosen = 0, no_plan = 0, failed = 0, blacklisted = 0;
+  for (std::size_t i = 0; i < journal.size(); ++i) {
+    const ExploreEvent& event = journal[i];
+    EXPECT_DOUBLE_EQ(event.pose.x, 1.5);
+    if (i > 0) {
+      EXPECT_GE(event.time_s, journal[i - 1].time_s);
+    }
+    switch (event.kind) {
+      case ExploreEventKind::goal_chosen:
+        ++chosen;
+        EXPECT_GT(event.goal_value, params.explore.min_goal_value);
+        ASSERT_LT(i + 2, journal.size());
+        EXPECT_EQ(journal[i + 1].kind, ExploreEventKind::no_plan);
+        EXPECT_EQ(journal[i + 2].kind, ExploreEventKind::goal_failed);
+        EXPECT_EQ(journal[i + 2].goal, event.goal);
+        break;
+      case ExploreEventKind::no_plan: ++no_plan; break;
+      case ExploreEventKind::goal_failed: ++failed; break;
+      case ExploreEventKind::goal_blacklisted: ++blacklisted; break;
+      default: break;
+    }
+  }
+  EXPECT_EQ(chosen, counters.goals_chosen);
+  EXPECT_EQ(no_plan, counters.plan_failures);
+  EXPECT_EQ(failed, counters.goal_failures);
+  EXPECT_EQ(blacklisted, counters.goals_blacklisted);
+  EXPECT_EQ(journal[journal.size() - 1].kind, ExploreEventKind::explored);
+}
+
+TEST(ExploreJournal, KeepsTheLatestEventsAndCountsTheDropped) {
+  ExploreJournal journal(3);
+  for (int i = 0; i < 5; ++i) {
+    ExploreEvent event;
+    event.time_s = static_cast<double>(i);
+    event.kind = i % 2 == 0 ? ExploreEventKind::look : ExploreEventKind::stall;
+    journal.record(event);
+  }
+  ASSERT_EQ(journal.size(), 3U);
+  EXPECT_EQ(journal.recorded(), 5U);
+  EXPECT_EQ(journal.dropped(), 2U);
+  EXPECT_DOUBLE_EQ(journal[0].time_s, 2.0);
+  EXPECT_DOUBLE_EQ(journal[2].time_s, 4.0);
+  EXPECT_STREQ(to_string(journal[1].kind), "stall");
 }
 
 TEST(Explorer, LooksAroundWithThePanUnitInQuarterTurns) {

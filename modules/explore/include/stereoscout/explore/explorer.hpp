@@ -31,6 +31,7 @@
 #include "stereoscout/core/geometry.hpp"
 #include "stereoscout/core/messages.hpp"
 #include "stereoscout/explore/contact_memory.hpp"
+#include "stereoscout/explore/explore_journal.hpp"
 #include "stereoscout/explore/fresh_obstacles.hpp"
 #include "stereoscout/explore/goal_value.hpp"
 #include "stereoscout/explore/grid_view.hpp"
@@ -96,6 +97,7 @@ class Explorer {
   const NavigationMap& navigation_map() const { return map_; }
   const GoalValue& goal_value() const { return goal_value_; }
   const ContactMemory& contacts() const { return contacts_; }
+  const ExploreJournal& journal() const { return journal_; }
 
  private:
   void start(const ExploreInput& input);
@@ -118,6 +120,7 @@ class Explorer {
   bool disc_is_clear(const GridView& grid, const Eigen::Vector2d& centre, const Eigen::Vector2d& robot,
                      double time_s) const;
   Eigen::Vector2i cell_of(const core::Pose2& pose) const;
+  void note(ExploreEventKind kind, const ExploreInput& input);
 
   ExploreParams params_;
   NavigationMap map_;
@@ -126,6 +129,7 @@ class Explorer {
   StallDetector stall_;
   ContactMemory contacts_;
   FreshObstacles fresh_;
+  ExploreJournal journal_;
   GridView planning_grid_;  // the input grid with the contact cells occupied (last rebuild)
   bool planning_on_copy_ = false;  // planning_grid_ is the contact memory's stamped copy
   bool stalled_ = false;           // this tick

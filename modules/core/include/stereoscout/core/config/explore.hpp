@@ -38,6 +38,7 @@ struct ExploreConfig {
   double contact_arc_deg = 25.0;
   int contact_memory = 256;
   double contact_hold_s = 600.0;
+  int event_memory = 4096;
   double time_limit_s = 3600.0;
   bool pan_at_goal = true;
   bool return_to_start = true;
@@ -78,6 +79,7 @@ inline void describe(ConfigVisitor& v, ExploreConfig& c) {
   v.number("contact_arc_deg", c.contact_arc_deg, {0.0, 90.0, "deg", "A stall marks the cells just beyond the robot's rim straight ahead and this far to either side as occupied for planning."});
   v.integer_field("contact_memory", c.contact_memory, {1, 100000, "cells", "Contact cells remembered (fixed list; when full, new ones are counted and forgotten)."});
   v.number("contact_hold_s", c.contact_hold_s, {1.0, 1e7, "s", "A contact cell is forgotten after this long, or earlier when the grid sees its cell free after holding it unknown or occupied (a person who walked on)."});
+  v.integer_field("event_memory", c.event_memory, {1, 10000000, "events", "Explorer events kept for the run directory's explore_events.csv (goals chosen, reached and failed, replans, stops, stalls, looks; a fixed ring: when full the oldest is dropped and counted)."});
   v.number("time_limit_s", c.time_limit_s, {1.0, 1e7, "s", "Exploration ends after this long (then returns to start if configured)."});
   v.boolean("pan_at_goal", c.pan_at_goal, "Look around 360 degrees on reaching each goal (paper VI).");
   v.boolean("return_to_start", c.return_to_start, "Drive back to the start pose when exploration ends.");

@@ -1,0 +1,64 @@
+#pragma once
+// What the explorer decided and why, event by event: the flight recorder of exploration.
+// Counters say how often a goal failed; the journal says which goal, where the robot stood,
+// and what came before (a stall, a look, a replan), which is what a run that covered too
+// little must be read from. The run directory writes it as explore_events.csv
+// (docs/report.md).
+//
+// A fixed ring of explore.event_memory events, allocated at start-up: when it is full the
+// oldest event is dropped and counted (dropped()), as in a flight recorder, whose last
+// minutes matter most. Events come at most a few per second (goals, replans, looks, stops),
+// never one per tick.
+
+#include <cstddef>
+#include <cstdint>
+
+#include "stereoscout/core/geometry.hpp"
+#include "stereoscout/core/ring_buffer.hpp"
+
+namespace stereoscout::explore {
+
+enum class ExploreEventKind : std::uint8_t {
+  goal_chosen,       // a new goal, planned to
+  goal_reached,
+  goal_abandoned,    // its value fell below min_goal_value on the way
+  plan_blocked,      // an update made the rest of the plan impassable: replanning
+  no_plan,           // A* found no path to the goal (or the start)
+  stuck,             // no progress towards the goal for stuck_timeout_s
+  goal_failed,       // the goal is given up (after no_plan or stuck)
+  goal_blacklisted,  // ... for good: it failed goal_failures_before_blacklist times
+  safety_stop,       // the next stretch would touch an occupied cell
+  stall,             // forward motion commanded, none made: a contact
+  look,              // a 360-degree look begins
+  contacts_cleared,  // before concluding "explored" or "no way back"
+  explored,          // no goal worth min_goal_value is left
+  time_limit,        // explore.time_limit_s reached
+  return_failed,     // no way back to the start, or no progress on it
+  returned,          // back at the start
+};
+const char* to_string(ExploreEventKind kind);
+
+struct ExploreEvent {
+  double time_s = 0.0;
+  ExploreEventKind kind = ExploreEventKind::goal_chosen;
+  core::Pose2 pose;  // the robot's, as the explorer had it (the ML particle's)
+  Eigen::Vector2d goal = Eigen::Vector2d::Zero();  // the goal at the time (the start when returning)
+  double goal_value = 0.0;                         // H(goal) when chosen; 0 for the start
+};
+
+class ExploreJournal {
+ public:
+  explicit ExploreJournal(std::size_t capacity) : events_(capacity) {}
+
+  void record(const ExploreEvent& event) { events_.push_overwrite(event); }
+
+  std::size_t size() const { return events_.size(); }
+  const ExploreEvent& operator[](std::size_t i) const { return events_[i]; }  // 0 = oldest kept
+  std::uint64_t recorded() const { return events_.pushed(); }
+  std::uint64_t dropped() const { return events_.overwritten(); }
+
+ private:
+  core::RingBuffer<ExploreEvent> events_;
+};
+
+}  // namespace stereoscout::explore

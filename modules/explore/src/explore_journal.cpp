@@ -1,0 +1,27 @@
+#include "stereoscout/explore/explore_journal.hpp"
+
+namespace stereoscout::explore {
+
+const char* to_string(ExploreEventKind kind) {
+  switch (kind) {
+    case ExploreEventKind::goal_chosen: return "goal_chosen";
+    case ExploreEventKind::goal_reached: return "goal_reached";
+    case ExploreEventKind::goal_abandoned: return "goal_abandoned";
+    case ExploreEventKind::plan_blocked: return "plan_blocked";
+    case ExploreEventKind::no_plan: return "no_plan";
+    case ExploreEventKind::stuck: return "stuck";
+    case ExploreEventKind::goal_failed: return "goal_failed";
+    case ExploreEventKind::goal_blacklisted: return "goal_blacklisted";
+    case ExploreEventKind::safety_stop: return "safety_stop";
+    case ExploreEventKind::stall: return "stall";
+    case ExploreEventKind::look: return "look";
+    case ExploreEventKind::contacts_cleared: return "contacts_cleared";
+    case ExploreEventKind::explored: return "explored";
+    case ExploreEventKind::time_limit: return "time_limit";
+    case ExploreEventKind::return_failed: return "return_failed";
+    case ExploreEventKind::returned: return "returned";
+  }
+  return "?";
+}
+
+}  // namespace stereoscout::explore
