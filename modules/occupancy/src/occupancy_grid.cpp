@@ -11,6 +11,8 @@
 namespace stereoscout::occupancy {
 namespace {
 
+constexpr double kAlwaysFirm = std::numeric_limits<double>::infinity();
+
 // A ray whose end cell lies further than this many grid spans from the grid is a broken
 // measurement (or a units bug), not geometry: skipping it bounds the line walk.
 constexpr double kFarLimitInGridSpans = 4.0;
@@ -36,7 +38,7 @@ bool GridGeometry::same_as(const GridGeometry& other) const {
 LogOddsModel LogOddsModel::from_config(const core::GridConfig& config) {
   return {static_cast<float>(config.log_odds_hit), static_cast<float>(config.log_odds_miss),
           static_cast<float>(config.log_odds_min), static_cast<float>(config.log_odds_max),
-          static_cast<float>(config.in_view_range_m)};
+          static_cast<float>(config.in_view_range_m), static_cast<float>(config.free_end_sigmas)};
 }
 
 CellThresholds CellThresholds::from_config(const core::GridConfig& config) {
@@ -189,22 +191,42 @@ void OccupancyGrid::miss(int cell_x, int cell_y) {
   add(cell_x, cell_y, model_.miss);
 }
 
+void OccupancyGrid::miss_unless_occupied(int cell_x, int cell_y) {
+  if (geometry_.contains(cell_x, cell_y) && cells_[index(cell_x, cell_y)] > 0.0F) return;
+  miss(cell_x, cell_y);
+}
+
 // Every cell but the last is passed through (miss); the last is where the column ends.
 void OccupancyGrid::cast_ray(double start_x, double start_y, double end_x, double end_y, bool end_is_obstacle,
-                             bool at_camera_height) {
+                             bool at_camera_height, double firm_m) {
   GridSegment segment;
   if (!grid_coordinates(start_x, start_y, end_x, end_y, segment)) {
     ++counts_.rays_rejected;
     return;
   }
   ++counts_.rays;
-  walk_cells(segment, [this](int x, int y) { miss(x, y); });
+  const double length = std::hypot(segment.x1 - segment.x0, segment.y1 - segment.y0);
+  const double firm = firm_m / geometry_.resolution_m;
+  // How far along the ray a cell's centre lies, in cells.
+  const auto along = [&](int x, int y) {
+    if (length <= 0.0) return 0.0;
+    return ((x + 0.5 - segment.x0) * (segment.x1 - segment.x0) + (y + 0.5 - segment.y0) * (segment.y1 - segment.y0)) /
+           length;
+  };
+  const auto pass = [&](int x, int y) {
+    if (along(x, y) > firm) {
+      miss_unless_occupied(x, y);
+    } else {
+      miss(x, y);
+    }
+  };
+  walk_cells(segment, pass);
   const int x1 = static_cast<int>(std::floor(segment.x1));
   const int y1 = static_cast<int>(std::floor(segment.y1));
   if (end_is_obstacle) {
     hit(x1, y1, at_camera_height);
   } else {
-    miss(x1, y1);
+    pass(x1, y1);
   }
 }
 
@@ -237,7 +259,8 @@ ScanPoint ScanPoint::from_column(const core::DepthScanColumn& column) {
           column.kind,
           column.obstacle_at_camera_height,
           saturated_mm(column.floor_visible_from_m),
-          saturated_mm(column.measurable_from_m)};
+          saturated_mm(column.measurable_from_m),
+          saturated_mm(column.end_range_sigma_m)};
 }
 
 void OccupancyGrid::insert_column(const Eigen::Vector2d& origin, const Eigen::Vector2d& end, const ScanPoint& point) {
@@ -262,13 +285,16 @@ void OccupancyGrid::insert_column(const Eigen::Vector2d& origin, const Eigen::Ve
   const double in_view_end = std::min<double>(model_.in_view_range_m, obstacle ? length : model_.in_view_range_m);
   if (in_view_end > visible_from) mark_in_view(at(visible_from), at(in_view_end));
   if (obstacle && length <= visible_from) {
-    cast_ray(end.x(), end.y(), end.x(), end.y(), true, point.obstacle_at_camera_height);  // its own cell only
+    cast_ray(end.x(), end.y(), end.x(), end.y(), true, point.obstacle_at_camera_height, kAlwaysFirm);  // its own cell only
     return;
   }
   if (!obstacle && !(reach > visible_from)) return;  // no visible floor on this ray
   const Eigen::Vector2d start = at(visible_from);
   const Eigen::Vector2d stop = obstacle ? end : at(reach);
-  cast_ray(start.x(), start.y(), stop.x(), stop.y(), obstacle, point.obstacle_at_camera_height);
+  // A free column's end may lie beyond the wall behind it by its range error (see the header).
+  const double uncertain = obstacle ? 0.0 : model_.free_end_sigmas * point.end_range_sigma_m();
+  const double firm = uncertain > 0.0 ? length - uncertain - visible_from : kAlwaysFirm;
+  cast_ray(start.x(), start.y(), stop.x(), stop.y(), obstacle, point.obstacle_at_camera_height, firm);
 }
 
 void OccupancyGrid::mark_in_view(const Eigen::Vector2d& from, const Eigen::Vector2d& to) {

@@ -21,7 +21,6 @@ ObstacleScanParams scan_params_from_config(const core::VisionConfig& vision, con
   params.blank_wall_within_m = vision.scan_blank_wall_within_m;
   params.blank_wall_untextured_fraction = vision.scan_blank_wall_untextured_fraction;
   params.wall_base_min_step_grey = vision.scan_wall_base_min_step;
-  params.free_end_sigmas = vision.scan_free_end_sigmas;
   params.sigma_d_px = vision.sigma_d_px;
   return params;
 }
@@ -173,17 +172,11 @@ void ObstacleScanner::add_wall_bases(const cv::Mat& disparity, const cv::Mat& le
   }
 }
 
-// The farthest floor point pulled towards `origin` by free_end_sigmas standard deviations of
-// its range (range * sigma_d / d, from its disparity d; the range is the uncapped one).
-Eigen::Vector2d ObstacleScanner::free_end(const cv::Mat& disparity, const ColumnState& state,
-                                          const Eigen::Vector2d& origin) const {
-  const Candidate& floor = state.farthest_floor;
-  const Eigen::Vector2d end(floor.x_m, floor.y_m);
+// The standard deviation of the farthest floor point's range: Z = f B / d, so an error of
+// sigma_d in d moves the point along its ray by range * sigma_d / d (first order).
+double ObstacleScanner::free_end_range_sigma(const cv::Mat& disparity, const ColumnState& state) const {
   const double d = disparity.ptr<float>(state.floor_end_row)[state.floor_end_x_left];
-  const double length = (end - origin).norm();
-  if (params_.free_end_sigmas <= 0.0 || !(d > 0.0) || !(length > 0.0)) return end;
-  const double pull = params_.free_end_sigmas * floor.range_m * params_.sigma_d_px / d;
-  return origin + (end - origin) * (std::max(0.0, length - pull) / length);
+  return d > 0.0 ? state.farthest_floor.range_m * params_.sigma_d_px / d : 0.0;
 }
 
 // The left image above the floor's end, up to the horizon row, is mostly a surface without
@@ -246,9 +239,9 @@ void ObstacleScanner::compute(const cv::Mat& disparity, const cv::Mat& left, dou
       out = {static_cast<float>(state.farthest_floor.x_m), static_cast<float>(state.farthest_floor.y_m),
              core::DepthScanColumn::Kind::obstacle, visible_from, false, measurable};
     } else if (state.has_floor) {
-      const Eigen::Vector2d end = free_end(disparity, state, origin.head<2>());
-      out = {static_cast<float>(end.x()), static_cast<float>(end.y()), core::DepthScanColumn::Kind::free, visible_from,
-             false, measurable};
+      out = {static_cast<float>(state.farthest_floor.x_m), static_cast<float>(state.farthest_floor.y_m),
+             core::DepthScanColumn::Kind::free, visible_from, false, measurable};
+      out.end_range_sigma_m = static_cast<float>(free_end_range_sigma(disparity, state));
     } else {
       out = {0.0F, 0.0F, core::DepthScanColumn::Kind::invalid, visible_from, false, measurable};
     }

@@ -56,6 +56,28 @@ TEST(OccupancyGrid, FreeColumnStopsOneCellShortOfItsEndAndInvalidDoesNothing) {
   EXPECT_TRUE(untouched.same_cells_as(empty));
 }
 
+// A wall at x = 0.6 m (cell 16) seen once; then floor seen up to 0.25 m beyond it from the
+// other side, as a far view's farthest floor point overshoots by its range error (0.2 m).
+TEST(OccupancyGrid, AFreeColumnsUncertainEndDoesNotEraseAWallButClearsUnknownCells) {
+  LogOddsModel model;
+  model.free_end_sigmas = 2.0F;
+  for (const bool guarded : {true, false}) {
+    OccupancyGrid grid(small_geometry(), guarded ? model : LogOddsModel{});
+    grid.insert(one_column(0.55F, 0.0F, Kind::obstacle), core::Pose2{0.05, 0.05, 0.0});  // the wall, cell (16, 10)
+    core::DepthScan overshoot = one_column(0.8F, 0.0F, Kind::free);  // end (0.85, 0.05): cell (18, 10)
+    overshoot.columns[0].end_range_sigma_m = 0.2F;
+    for (int view = 0; view < 5; ++view) grid.insert(overshoot, core::Pose2{0.05, 0.05, 0.0});
+    if (guarded) {
+      EXPECT_FLOAT_EQ(grid.log_odds(16, 10), 0.85F);  // within 0.4 m of the end: kept
+      EXPECT_FLOAT_EQ(grid.log_odds(17, 10), 5 * -0.4F);  // unknown there: cleared as before
+      EXPECT_FLOAT_EQ(grid.log_odds(12, 10), 6 * -0.4F);  // before the uncertain end: every miss
+    } else {
+      EXPECT_LT(grid.log_odds(16, 10), 0.0F);  // erased by the floor seen beyond it
+    }
+    EXPECT_FLOAT_EQ(grid.log_odds(18, 10), 0.0F);  // the end cell itself: one cell short, as ever
+  }
+}
+
 core::DepthScan one_column_visible_from(float x, Kind kind, float floor_visible_from_m) {
   core::DepthScan scan = one_column(x, 0.0F, kind);
   scan.columns[0].floor_visible_from_m = floor_visible_from_m;

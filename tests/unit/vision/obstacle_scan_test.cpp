@@ -284,25 +284,20 @@ TEST(ObstacleScan, FloorTextureFadingBeforeAFarWallIsNoObstacle) {
   EXPECT_NEAR(high.columns[320].x_robot_m, 3.1, 0.05);  // depth 3 m from the camera, 0.1 m ahead
 }
 
-// A free column ends short of its farthest floor point by free_end_sigmas standard deviations
-// of that point's range, range * sigma_d / d: the error grows with the square of the range.
-TEST(ObstacleScan, AFreeColumnEndsShortOfItsFloorByItsRangeError) {
-  ObstacleScanParams pulled;
-  pulled.free_end_sigmas = 2.0;
-  pulled.sigma_d_px = 0.5;
+// A free column reports its end's range error, range * sigma_d / d: it grows with the square
+// of the range (the grid keeps that stretch from erasing a wall: occupancy_grid.hpp).
+TEST(ObstacleScan, AFreeColumnReportsItsEndsRangeError) {
   for (const double floor_until_m : {2.0, 3.0}) {
     // The floor seen up to floor_until_m of depth, under a wall above the robot (no obstacle).
-    const core::DepthScan at_end = scan_of_wall(5.0, 1.3, floor_until_m, true);
-    const core::DepthScan short_of_end = scan_of_wall(5.0, 1.3, floor_until_m, true, pulled);
-    const core::DepthScanColumn& column = short_of_end.columns[320];
+    const core::DepthScan scan = scan_of_wall(5.0, 1.3, floor_until_m, true);
+    const core::DepthScanColumn& column = scan.columns[320];
     ASSERT_EQ(column.kind, Kind::free);
-    ASSERT_EQ(at_end.columns[320].kind, Kind::free);
-    const double range = range_of(at_end, at_end.columns[320]);
+    const double range = range_of(scan, column);
     EXPECT_NEAR(range, floor_until_m, 0.02);
     const double d = 400.0 * 0.1 / range;  // the paper's f B over the depth
-    EXPECT_NEAR(range - range_of(short_of_end, column), 2.0 * range * 0.5 / d, 0.005) << floor_until_m;
-    EXPECT_NEAR(column.y_robot_m, at_end.columns[320].y_robot_m, 1e-3);  // along the same ray
+    EXPECT_NEAR(column.end_range_sigma_m, range * 0.5 / d, 0.003) << floor_until_m;
   }
+  EXPECT_EQ(scan_of_wall(1.3, 0.0, 100.0, false).columns[320].end_range_sigma_m, 0.0F);  // an obstacle
 }
 
 TEST(ObstacleScan, AnObstacleThroughTheCameraHeightIsMarkedSo) {

@@ -74,6 +74,9 @@ struct DepthScanColumn {
   // anything at all: the matcher's largest disparity, and near the image's edge the part of
   // the view the other camera does not share. The grid changes no cell nearer than that.
   float measurable_from_m = 0.0F;
+  // A free column: the standard deviation of its end point's range from the disparity error
+  // (the farthest floor point may lie beyond the wall behind it by about this); 0 otherwise.
+  float end_range_sigma_m = 0.0F;
 };
 
 struct DepthScan {

@@ -13,7 +13,14 @@
 //     floor marks only its own cell);
 //   - a free column (floor seen up to its end) stops one cell short of its end point: the
 //     farthest floor point often lies in the cell of the wall behind it, which must not be
-//     cleared; nothing is cleared when that leaves no visible floor;
+//     cleared; nothing is cleared when that leaves no visible floor. Within free_end_sigmas
+//     standard deviations of its end's range (DepthScanColumn::end_range_sigma_m) it lowers
+//     no cell that holds an obstacle (log-odds above 0): that end is the farthest of the
+//     column's floor points, the one the disparity error put farthest out, so at a wall's
+//     base it lies beyond the wall, and floor seen up to a wall from both sides erased it
+//     (the office's corridor walls, where plans then ran). Unknown and free cells there are
+//     cleared as before: ending the ray short instead left strips of unknown cells before
+//     every wall and in every door seen from afar, which closed the doors;
 //   - invalid columns change nothing, and no column changes a cell nearer than its
 //     measurable_from_m (the part of the view the other camera does not share, or beyond
 //     the matcher's largest disparity): it could not have seen an obstacle there.
@@ -71,6 +78,7 @@ struct LogOddsModel {
   float min = -4.0F;
   float max = 4.0F;
   float in_view_range_m = 0.0F;  // grid.in_view_range_m (0: nothing is marked)
+  float free_end_sigmas = 0.0F;  // grid.free_end_sigmas (0: a free column's misses are all alike)
   static LogOddsModel from_config(const core::GridConfig& config);
 };
 
@@ -110,11 +118,13 @@ struct ScanPoint {
   bool obstacle_at_camera_height = false;
   std::uint16_t floor_visible_from_mm = 0;  // DepthScanColumn::floor_visible_from_m, whole mm
   std::uint16_t measurable_from_mm = 0;     // DepthScanColumn::measurable_from_m, whole mm
+  std::uint16_t end_range_sigma_mm = 0;     // DepthScanColumn::end_range_sigma_m, whole mm
 
   // The one conversion both insert() overloads use, so they give identical cells.
   static ScanPoint from_column(const core::DepthScanColumn& column);
   double floor_visible_from_m() const { return 0.001 * floor_visible_from_mm; }
   double measurable_from_m() const { return 0.001 * measurable_from_mm; }
+  double end_range_sigma_m() const { return 0.001 * end_range_sigma_mm; }
 };
 
 // A stored scan as seen by the grid: the camera centre and the valid columns in order.
@@ -170,13 +180,17 @@ class OccupancyGrid {
   void hit(int cell_x, int cell_y, bool at_camera_height);
   // log_odds_miss, unless a column of the scan being inserted ends in the cell.
   void miss(int cell_x, int cell_y);
+  // The same, but not to a cell that holds an obstacle (log-odds above 0).
+  void miss_unless_occupied(int cell_x, int cell_y);
   bool marked_hit_this_scan(int cell_x, int cell_y) const;
   void set_hit_marks(const Eigen::Vector2d& end, bool marked);
   bool grid_coordinates(double start_x, double start_y, double end_x, double end_y, GridSegment& segment) const;
   template <typename EachPoint>
   void insert_points(const ScanFrame& frame, EachPoint&& each_point);
+  // Cells whose centre lies farther than firm_m along the ray from its start get
+  // miss_unless_occupied instead of miss (infinity: none).
   void cast_ray(double start_x, double start_y, double end_x, double end_y, bool end_is_obstacle,
-                bool at_camera_height);
+                bool at_camera_height, double firm_m);
   // Misses, before the end cell, only the cells whose last hit was at the camera's height.
   void clear_camera_height_hits(double start_x, double start_y, double end_x, double end_y);
   // One column: origin and end point in the map frame.

@@ -13,12 +13,11 @@
 //   - a point within floor_tolerance_m of the floor is free floor;
 //   - points above the robot or below the floor are ignored.
 // The column reports the obstacle (kind obstacle), else free space up to the farthest floor
-// point (kind free), else nothing (kind invalid). A free column ends free_end_sigmas standard
-// deviations of its range short of that point: the farthest of a column's floor points is the
-// one whose disparity error put it farthest out, and at a wall's base it lies beyond the wall
-// by that error (sigma_range = range * sigma_d / d: 0.11 m at 3 m, 0.2 m at 4 m for the
-// paper's 0.5 px). Without it, floor seen up to a wall from either side cleared the wall's
-// cells, and plans ran through the office's corridor walls. Ranges are capped at max_range_m: farther
+// point (kind free), else nothing (kind invalid). A free column also reports the standard
+// deviation of its end's range from a disparity error of sigma_d_px, range * sigma_d / d
+// (0.11 m at 3 m, 0.2 m at 4 m for the paper's 0.5 px): the farthest of a column's floor
+// points is the one whose error put it farthest out, at a wall's base beyond the wall, and the
+// grid does not let it clear a cell that holds an obstacle (occupancy_grid.hpp). Ranges are capped at max_range_m: farther
 // obstacles are ignored and farther floor is reported as free up to the cap.
 // A table top at 0.75 m is below a 1.2 m robot, so it is an obstacle even though the space
 // under it is free floor: the robot cannot drive under it.
@@ -91,9 +90,7 @@ struct ObstacleScanParams {
   double blank_wall_untextured_fraction = 0.5;
   // The brightness step at a blank wall's base (wall_base.hpp); 0: the floor's end only.
   double wall_base_min_step_grey = 12.0;
-  // A free column ends this many standard deviations of its range short of its farthest
-  // floor point, at a disparity error of sigma_d_px; 0: at that point.
-  double free_end_sigmas = 0.0;
+  // The disparity error of a matched pixel, for a free column's end_range_sigma_m.
   double sigma_d_px = 0.5;
 };
 
@@ -134,7 +131,7 @@ class ObstacleScanner {
     Candidate wall_base;                      // the nearest wall base filed under this column
   };
   bool floor_ends_at_unseen_surface(const ColumnState& state) const;
-  Eigen::Vector2d free_end(const cv::Mat& disparity, const ColumnState& state, const Eigen::Vector2d& origin) const;
+  double free_end_range_sigma(const cv::Mat& disparity, const ColumnState& state) const;
   bool nothing_seen_beyond(const ColumnState& state, double range_m) const;
   void add_wall_bases(const cv::Mat& disparity, const cv::Mat& left, const Eigen::Isometry3d& robot_from_camera);
   bool blank_above_floor_end(const cv::Mat& disparity, const ColumnState& state) const;
