@@ -126,6 +126,7 @@ struct ScanPoint {
   double measurable_from_m() const { return 0.001 * measurable_from_mm; }
   double end_range_sigma_m() const { return 0.001 * end_range_sigma_mm; }
 };
+static_assert(sizeof(ScanPoint) == 16, "the scan history's memory budget counts 16 bytes a column");
 
 // A stored scan as seen by the grid: the camera centre and the valid columns in order.
 struct ScanView {
