@@ -207,6 +207,7 @@ void OccupancyGrid::cast_ray(double start_x, double start_y, double end_x, doubl
   ++counts_.rays;
   const double length = std::hypot(segment.x1 - segment.x0, segment.y1 - segment.y0);
   const double firm = firm_m / geometry_.resolution_m;
+  const bool guarded = std::isfinite(firm);
   // How far along the ray a cell's centre lies, in cells.
   const auto along = [&](int x, int y) {
     if (length <= 0.0) return 0.0;
@@ -214,7 +215,7 @@ void OccupancyGrid::cast_ray(double start_x, double start_y, double end_x, doubl
            length;
   };
   const auto pass = [&](int x, int y) {
-    if (along(x, y) > firm) {
+    if (guarded && along(x, y) > firm) {
       miss_unless_occupied(x, y);
     } else {
       miss(x, y);

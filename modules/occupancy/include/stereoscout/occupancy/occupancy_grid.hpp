@@ -20,7 +20,9 @@
 //     base it lies beyond the wall, and floor seen up to a wall from both sides erased it
 //     (the office's corridor walls, where plans then ran). Unknown and free cells there are
 //     cleared as before: ending the ray short instead left strips of unknown cells before
-//     every wall and in every door seen from afar, which closed the doors;
+//     every wall and in every door seen from afar, which closed the doors. Off by default:
+//     measured on the office it kept smeared jamb cells and a person's trace too, and
+//     lowered coverage (docs/results.md);
 //   - invalid columns change nothing, and no column changes a cell nearer than its
 //     measurable_from_m (the part of the view the other camera does not share, or beyond
 //     the matcher's largest disparity): it could not have seen an obstacle there.

@@ -16,8 +16,8 @@
 // point (kind free), else nothing (kind invalid). A free column also reports the standard
 // deviation of its end's range from a disparity error of sigma_d_px, range * sigma_d / d
 // (0.11 m at 3 m, 0.2 m at 4 m for the paper's 0.5 px): the farthest of a column's floor
-// points is the one whose error put it farthest out, at a wall's base beyond the wall, and the
-// grid does not let it clear a cell that holds an obstacle (occupancy_grid.hpp). Ranges are capped at max_range_m: farther
+// points is the one whose error put it farthest out, at a wall's base beyond the wall (the
+// grid's free_end_sigmas, occupancy_grid.hpp). Ranges are capped at max_range_m: farther
 // obstacles are ignored and farther floor is reported as free up to the cap.
 // A table top at 0.75 m is below a 1.2 m robot, so it is an obstacle even though the space
 // under it is free floor: the robot cannot drive under it.
