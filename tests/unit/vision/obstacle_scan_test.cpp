@@ -285,7 +285,7 @@ TEST(ObstacleScan, FloorTextureFadingBeforeAFarWallIsNoObstacle) {
 }
 
 // A free column reports its end's range error, range * sigma_d / d: it grows with the square
-// of the range (the grid keeps that stretch from erasing a wall: occupancy_grid.hpp).
+// of the range (for the grid's free_end_sigmas, off by default: occupancy_grid.hpp).
 TEST(ObstacleScan, AFreeColumnReportsItsEndsRangeError) {
   for (const double floor_until_m : {2.0, 3.0}) {
     // The floor seen up to floor_until_m of depth, under a wall above the robot (no obstacle).
