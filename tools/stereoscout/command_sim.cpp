@@ -159,6 +159,7 @@ struct ScanScore {
   long long in_free_space = 0;     // farther than 0.6 m: a phantom
   long long free_columns = 0;
   long long free_through_obstacle = 0;  // free space reported across a real obstacle
+  long long free_past_obstacle_far = 0;  // ... ending more than kNear_m beyond where it entered it
 };
 
 constexpr double kAt_m = 0.1;
@@ -179,6 +180,7 @@ void score_scan(const core::DepthScan& scan, const core::Pose2& pose, const host
       for (double s = kRayStep_m; s < range - kRayStep_m; s += kRayStep_m) {
         if (band.disc_collides(origin + (point - origin) * (s / range), 0.01)) {
           ++score.free_through_obstacle;
+          if (range - s > kNear_m) ++score.free_past_obstacle_far;
           break;
         }
       }
@@ -203,7 +205,9 @@ int run_eval_scan(int argc, char** argv) {
                       "at evenly spaced headings, each column within --within metres is placed against\n"
                       "the world's real obstacles (walking people left out). Prints JSON: obstacle\n"
                       "columns within 0.1 m of an obstacle, 0.1-0.3 m, 0.3-0.6 m, and farther (in free\n"
-                      "space), free columns, and free columns whose ray crosses an obstacle.");
+                      "space), free columns, free columns whose ray crosses an obstacle, and those\n"
+              "of them that end more than 0.3 m past where they entered it (a wall erased, not\n"
+              "a grazed corner).");
   arguments.option("config", "FILE", "config file (camera, vision, robot, sim sections)", default_config_path());
   arguments.option("world", "FILE", "world file (default: run.world of the config)");
   arguments.option("grid", "M", "spacing of the poses in metres", "1.5");
@@ -257,9 +261,10 @@ int run_eval_scan(int argc, char** argv) {
   std::printf("{\"world\": \"%s\", \"views\": %lld, \"within_m\": %g,\n"
               " \"obstacle_columns\": {\"within_0.1_m\": %lld, \"0.1_to_0.3_m\": %lld, \"0.3_to_0.6_m\": %lld, "
               "\"in_free_space\": %lld},\n"
-              " \"free_columns\": %lld, \"free_through_obstacle\": %lld}\n",
+              " \"free_columns\": %lld, \"free_through_obstacle\": %lld, \"free_past_obstacle_by_0.3_m\": %lld}\n",
               world.name.c_str(), score.views, within_m, score.at_obstacle, score.near_obstacle,
-              score.short_of_obstacle, score.in_free_space, score.free_columns, score.free_through_obstacle);
+              score.short_of_obstacle, score.in_free_space, score.free_columns, score.free_through_obstacle,
+              score.free_past_obstacle_far);
   return 0;
 }
 

@@ -22,6 +22,7 @@ ObstacleScanParams scan_params_from_config(const core::VisionConfig& vision, con
   params.blank_wall_untextured_fraction = vision.scan_blank_wall_untextured_fraction;
   params.wall_base_min_step_grey = vision.scan_wall_base_min_step;
   params.sigma_d_px = vision.sigma_d_px;
+  params.floor_onto_plane = vision.scan_floor_onto_plane;
   return params;
 }
 
@@ -112,11 +113,16 @@ void ObstacleScanner::add_point(int column, int x_left, int row, const Eigen::Ve
   const bool on_floor = std::fabs(point.z()) <= params_.floor_tolerance_m;
   if (!on_floor) state.farthest_off_floor_m = std::max(state.farthest_off_floor_m, range);  // any height
   if (on_floor) {
-    if (!state.has_floor || range > state.farthest_floor.range_m) {
+    // A floor point measured below the floor lies beyond where its ray meets the floor by its
+    // disparity error alone: the ray's meeting point is the better range.
+    const double onto_floor =
+        point.z() < 0.0 && params_.floor_onto_plane ? origin.z() / (origin.z() - point.z()) : 1.0;
+    const double floor_range = range * onto_floor;
+    if (!state.has_floor || floor_range > state.farthest_floor.range_m) {
       state.has_floor = true;
-      const double capped = std::min(range, params_.max_range_m);
+      const double capped = std::min(floor_range, params_.max_range_m);
       const double scale = range > 0.0 ? capped / range : 0.0;
-      state.farthest_floor = {range, origin.x() + dx * scale, origin.y() + dy * scale};
+      state.farthest_floor = {floor_range, origin.x() + dx * scale, origin.y() + dy * scale};
       state.floor_end_x_left = x_left;
       state.floor_end_row = row;
     }

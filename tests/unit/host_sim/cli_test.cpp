@@ -73,7 +73,11 @@ TEST(SimCommands, EvalScanPlacesTheScanAgainstTheWorld) {
   const long long all = at + json_count(output, "0.1_to_0.3_m") + json_count(output, "0.3_to_0.6_m") + phantoms;
   EXPECT_GE(at, all * 90 / 100) << output;
   EXPECT_LE(phantoms, all / 100) << output;
-  EXPECT_GE(json_count(output, "free_through_obstacle"), 0) << output;
+  const long long through = json_count(output, "free_through_obstacle");
+  EXPECT_GE(through, 0) << output;
+  const long long far_past = json_count(output, "free_past_obstacle_by_0.3_m");
+  EXPECT_GE(far_past, 0) << output;
+  EXPECT_LE(far_past, through) << output;
   EXPECT_EQ(run("eval-scan --world " + world_path("office.yaml") + " --headings 0", &output), 2);
 }
 

@@ -300,6 +300,44 @@ TEST(ObstacleScan, AFreeColumnReportsItsEndsRangeError) {
   EXPECT_EQ(scan_of_wall(1.3, 0.0, 100.0, false).columns[320].end_range_sigma_m, 0.0F);  // an obstacle
 }
 
+// Every matched pixel 6% too far (its disparity 6% too small), up to a blank wall 2.9 m from
+// the camera: the floor points come out up to 3.6 cm below the floor, within its tolerance,
+// and the free column would end 17 cm beyond the wall. Moved up their rays onto the floor,
+// they end at the wall's base, give or take the wall's lowest centimetre (still matched here,
+// and taken for floor: its ray meets the floor 2 per cent of the range behind the wall).
+TEST(ObstacleScan, AFloorPointMeasuredBelowTheFloorIsMovedUpItsRayOntoIt) {
+  test::Scene scene;
+  scene.boxes.push_back({{3.0, -8.0, 0.0}, {3.1, 8.0, 2.5}});
+  StereoCalibration camera;
+  const test::Rendering view = test::render(scene, camera, paper_mount(), core::Pose2{});
+  cv::Mat disparity = without_blank_pixels(view.left_depth, camera, 100.0, false);
+  for (int y = 0; y < disparity.rows; ++y) {
+    for (int x = 0; x < disparity.cols; ++x) {
+      float& d = disparity.at<float>(y, x);
+      if (d > 0.0F) d /= 1.06F;
+    }
+  }
+  for (const bool onto_plane : {true, false}) {
+    ObstacleScanParams params;
+    params.floor_onto_plane = onto_plane;
+    ObstacleScanner scanner(params, camera, paper_mount());
+    core::DepthScan scan;
+    scanner.allocate(scan);
+    scanner.compute(disparity, 0.0, 0, scan);
+    for (int x = 160; x < 480; x += 40) {
+      const core::DepthScanColumn& column = scan.columns[static_cast<std::size_t>(x)];
+      ASSERT_EQ(column.kind, Kind::free) << "column " << x;
+      const double wall_range = 2.9 / std::cos(std::atan((x - camera.principal_x_px) / camera.focal_px));
+      if (onto_plane) {
+        EXPECT_LE(range_of(scan, column), wall_range * 1.02) << "column " << x;
+        EXPECT_GE(range_of(scan, column), wall_range - 0.1) << "column " << x;
+      } else {
+        EXPECT_GE(range_of(scan, column), wall_range * 1.05) << "column " << x;
+      }
+    }
+  }
+}
+
 TEST(ObstacleScan, AnObstacleThroughTheCameraHeightIsMarkedSo) {
   test::Scene scene;
   // A person-sized block (0 to 1.7 m) ahead to the right, a low box (0 to 0.5 m) to the left.

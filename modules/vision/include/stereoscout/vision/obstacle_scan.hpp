@@ -10,14 +10,16 @@
 //     is an obstacle point; the column's obstacle is the nearest such point, confirmed by
 //     min_obstacle_pixels obstacle points no farther than it (a single mismatch cannot make
 //     a phantom obstacle);
-//   - a point within floor_tolerance_m of the floor is free floor;
+//   - a point within floor_tolerance_m of the floor is free floor; one measured below the
+//     floor is moved up its pixel's ray to the floor plane (floor_onto_plane): on a flat floor
+//     its disparity error alone put it lower and farther;
 //   - points above the robot or below the floor are ignored.
 // The column reports the obstacle (kind obstacle), else free space up to the farthest floor
 // point (kind free), else nothing (kind invalid). A free column also reports the standard
 // deviation of its end's range from a disparity error of sigma_d_px, range * sigma_d / d
 // (0.11 m at 3 m, 0.2 m at 4 m for the paper's 0.5 px): the farthest of a column's floor
 // points is the one whose error put it farthest out, at a wall's base beyond the wall (the
-// grid's free_end_sigmas, occupancy_grid.hpp). Ranges are capped at max_range_m: farther
+// grid's free_end_sigmas, occupancy_grid.hpp), unless floor_onto_plane has moved it back. Ranges are capped at max_range_m: farther
 // obstacles are ignored and farther floor is reported as free up to the cap.
 // A table top at 0.75 m is below a 1.2 m robot, so it is an obstacle even though the space
 // under it is free floor: the robot cannot drive under it.
@@ -92,6 +94,9 @@ struct ObstacleScanParams {
   double wall_base_min_step_grey = 12.0;
   // The disparity error of a matched pixel, for a free column's end_range_sigma_m.
   double sigma_d_px = 0.5;
+  // A floor point measured below the floor is moved up its ray onto the floor plane
+  // (vision.scan_floor_onto_plane).
+  bool floor_onto_plane = true;
 };
 
 ObstacleScanParams scan_params_from_config(const core::VisionConfig& vision, const core::RobotConfig& robot);

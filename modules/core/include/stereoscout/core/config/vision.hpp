@@ -42,6 +42,7 @@ struct VisionConfig {
   double scan_blank_wall_within_m = 1.5;
   double scan_blank_wall_untextured_fraction = 0.5;
   double scan_wall_base_min_step = 12.0;
+  bool scan_floor_onto_plane = true;
 };
 
 inline void describe(ConfigVisitor& v, VisionConfig& c) {
@@ -79,6 +80,7 @@ inline void describe(ConfigVisitor& v, VisionConfig& c) {
   v.number("scan_blank_wall_within_m", c.scan_blank_wall_within_m, {0.0, 100.0, "m", "A column whose floor ends nearer than this with nothing seen beyond it (at any height) reports an obstacle where the floor ends: a blank wall gives stereo no disparity, and without this the robot drives into it. Farther out the floor's texture fades (the office's tiles at about 2 m), so its end is no wall there; 0 turns the rule off."});
   v.number("scan_blank_wall_untextured_fraction", c.scan_blank_wall_untextured_fraction, {0.0, 1.0, "", "The blank-wall rule also needs at least this fraction of the left image's pixels above the floor's end, up to the horizon, to have been rejected by the matcher for lack of texture: the floor can also end where stereo is confused (an occlusion edge beside a near object, a repeated pattern) with a textured, open view beyond it. 0: any floor end counts."});
   v.number("scan_wall_base_min_step", c.scan_wall_base_min_step, {0.0, 255.0, "grey levels", "A blank wall's base is where, down an image column from the horizon, the brightness of the rows above and below first steps by at least this much, with the run above it mostly untextured (scan_blank_wall_untextured_fraction); within scan_blank_wall_within_m the scan puts the wall there, on the floor plane, rather than where the matched floor ends (0.3-0.6 m short of it, or nowhere when the wall is faced head-on). 0: the floor's end only."});
+  v.boolean("scan_floor_onto_plane", c.scan_floor_onto_plane, "A floor point that its disparity puts below the floor is moved up its pixel's ray to where that ray meets the floor plane: its disparity error alone put it farther (for the paper's 0.5 px, up to 8% of its range before the floor tolerance rejects it), and the farthest floor point of a column, its free end, is the one whose error put it farthest, beyond the wall behind it. The eval-scan sweep of the office: free rays through an obstacle 5736 -> 3644 (docs/results.md). Assumes a flat floor and a level camera, as the rest of the scan does.");
   v.require(c.dense_window_px % 2 == 1, "dense_window_px", "must be odd");
   v.require(c.min_disparity_px < c.max_disparity_px, "max_disparity_px", "must be larger than min_disparity_px");
   v.end_section();
