@@ -226,6 +226,8 @@ void write_counters(report::JsonWriter& json, const stack::Stack& stack) {
       .unsigned_integer("plan_failures", e.plan_failures)
       .unsigned_integer("replans", e.replans)
       .unsigned_integer("goal_shifts", e.goal_shifts)
+      .unsigned_integer("stuck", e.stuck)
+      .unsigned_integer("goal_timeouts", e.goal_timeouts)
       .unsigned_integer("safety_stops", e.safety_stops)
       .unsigned_integer("turns_to_face_plan", e.turns_to_face_plan)
       .unsigned_integer("stalls", e.stalls)

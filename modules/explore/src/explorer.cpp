@@ -176,11 +176,44 @@ bool Explorer::replan(const ExploreInput& input) {
       (state_ == ExploreState::returning && clear_contacts(input) &&
        planner_.plan(map_, cell_of(input.pose), target, plan_) == PlanResult::found)) {
     fresh_look_ = false;  // the robot drives on: the next failure deserves a look of its own
+    // A longer plan is a detour the map now demands (a wall where it held free cells): progress
+    // is measured along it, not against the shorter plan's best.
+    const double length = remaining_path_m(position_of(input.pose));
+    longest_plan_m_ = std::max(longest_plan_m_, length);
+    if (std::isfinite(best_goal_distance_m_)) best_goal_distance_m_ = std::max(best_goal_distance_m_, length);
     return true;
   }
   ++counters_.plan_failures;
   note(ExploreEventKind::no_plan, input);
   return false;
+}
+
+// A new goal (or the way back): progress starts from nothing, and so does its time.
+void Explorer::begin_pursuit(const ExploreInput& input) {
+  best_goal_distance_m_ = std::numeric_limits<double>::infinity();
+  last_progress_time_s_ = input.time_s;
+  goal_started_s_ = input.time_s;
+  longest_plan_m_ = 0.0;
+}
+
+// What is left of the plan: to the waypoint the follower is at, then along the rest. A plan
+// around a wall is longer than the straight line to the goal and, for a while, leads away
+// from it; along the plan the robot makes progress all the same.
+double Explorer::remaining_path_m(const Eigen::Vector2d& position) const {
+  if (plan_.empty()) return (position - goal_.position).norm();
+  std::size_t k = std::min(follower_.progress(), plan_.waypoints.size() - 1);
+  double length = (plan_.waypoints[k] - position).norm();
+  for (; k + 1 < plan_.waypoints.size(); ++k) length += (plan_.waypoints[k + 1] - plan_.waypoints[k]).norm();
+  return length;
+}
+
+// Progress along each new plan resets the stuck timer, so a robot that alternates between two
+// routes (a gap in a wall that the next view closes, a door) would never fail: the goal gets
+// stuck_timeout_s plus goal_time_factor times its longest plan's driving time, in all.
+bool Explorer::out_of_time(double time_s) const {
+  if (params_.explore.goal_time_factor <= 0.0) return false;
+  const double driving_s = longest_plan_m_ / params_.max_speed_mps;
+  return time_s - goal_started_s_ > params_.explore.stuck_timeout_s + params_.explore.goal_time_factor * driving_s;
 }
 
 void Explorer::choose_goal(const ExploreInput& input) {
@@ -205,10 +238,9 @@ void Explorer::choose_goal(const ExploreInput& input) {
     ++counters_.goals_chosen;
     goal_ = goal;
     note(ExploreEventKind::goal_chosen, input);
+    begin_pursuit(input);
     if (replan(input)) {
       state_ = ExploreState::drive;
-      best_goal_distance_m_ = std::numeric_limits<double>::infinity();
-      last_progress_time_s_ = input.time_s;
       return;
     }
     goal_failed(input);
@@ -231,8 +263,7 @@ void Explorer::finish_exploring(const ExploreInput& input, FinishReason reason) 
   goal_.valid = true;
   goal_.position = position_of(start_pose_);
   goal_.cell = map_.grid().cell_of(goal_.position);
-  best_goal_distance_m_ = std::numeric_limits<double>::infinity();
-  last_progress_time_s_ = input.time_s;
+  begin_pursuit(input);
   if (!replan(input)) goal_failed(input);
 }
 
@@ -311,10 +342,7 @@ void Explorer::finish_look(const ExploreInput& input) {
   const bool keep_progress = keep_progress_after_look_;
   keep_progress_after_look_ = false;
   if (state_ != resumed) return;
-  if (!keep_progress) {
-    best_goal_distance_m_ = std::numeric_limits<double>::infinity();
-    last_progress_time_s_ = input.time_s;
-  }
+  if (!keep_progress) begin_pursuit(input);
   if (!replan(input)) goal_failed(input);
 }
 
@@ -337,13 +365,19 @@ void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
     }
     return;
   }
-  const double distance = (position_of(input.pose) - goal_.position).norm();
+  const double distance = remaining_path_m(position_of(input.pose));
   if (distance < best_goal_distance_m_ - kProgressStep_m) {
     best_goal_distance_m_ = distance;
     last_progress_time_s_ = input.time_s;
   } else if (input.time_s - last_progress_time_s_ > params_.explore.stuck_timeout_s) {
     ++counters_.stuck;
     note(ExploreEventKind::stuck, input);
+    goal_failed(input);
+    return;
+  }
+  if (out_of_time(input.time_s)) {
+    ++counters_.goal_timeouts;
+    note(ExploreEventKind::goal_timeout, input);
     goal_failed(input);
     return;
   }

@@ -2,6 +2,7 @@
 // the emergency stop, the look around, termination, and no allocation in step().
 #include <cmath>
 #include <cstdint>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -442,6 +443,117 @@ TEST(Explorer, EmergencyStopHaltsInTheSameTickAndResumes) {
   EXPECT_EQ(halted.pan_target_rad, 0.3);  // the pan unit holds still too
   EXPECT_EQ(explorer.counters().emergency_stop_ticks, 1U);
   EXPECT_GT(explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.2, false)).drive.linear_mps, 0.0);
+}
+
+// The 10 x 6 m room, unknown only in its top right corner, and a wall at x = 3 m from the
+// top down to y = 1.5 m: from the top left the way to the unknown goes down round the wall's
+// end, 3.5 m away from the goal before it comes nearer.
+struct WallToGoRound {
+  TestGrid grid{100, 60, CellState::free};
+  WallToGoRound() {
+    grid.walls();
+    grid.fill(80, 30, 99, 59, CellState::unknown);
+    grid.fill(30, 15, 32, 59, CellState::occupied);
+  }
+};
+
+// Where the robot is after `travelled_m` along `waypoints`, facing along them.
+core::Pose2 along(const std::vector<Eigen::Vector2d>& waypoints, double travelled_m) {
+  for (std::size_t k = 0; k + 1 < waypoints.size(); ++k) {
+    const Eigen::Vector2d step = waypoints[k + 1] - waypoints[k];
+    if (travelled_m <= step.norm()) {
+      const Eigen::Vector2d at = waypoints[k] + step * (travelled_m / step.norm());
+      return {at.x(), at.y(), std::atan2(step.y(), step.x())};
+    }
+    travelled_m -= step.norm();
+  }
+  return {waypoints.back().x(), waypoints.back().y(), 0.0};
+}
+
+std::vector<Eigen::Vector2d> plan_of(const Explorer& explorer) {
+  return {explorer.plan().waypoints.begin(), explorer.plan().waypoints.end()};
+}
+
+double length_of(const std::vector<Eigen::Vector2d>& waypoints) {
+  double length = 0.0;
+  for (std::size_t k = 0; k + 1 < waypoints.size(); ++k) length += (waypoints[k + 1] - waypoints[k]).norm();
+  return length;
+}
+
+// Progress is measured along the plan: a robot going round the wall, for longer than
+// stuck_timeout_s away from the goal, is not stuck; one standing still is, after that time.
+TEST(Explorer, ARobotGoingRoundAWallAwayFromItsGoalIsNotStuck) {
+  WallToGoRound scene;
+  ExploreParams params = no_look_params(100, 60);
+  params.explore.stuck_timeout_s = 10.0;
+  Explorer explorer(params);
+  explorer.step(input_at(scene.grid.view(), 2.0, 5.0, -1.57, 0.0, true));
+  ASSERT_EQ(explorer.state(), ExploreState::drive);
+  const std::vector<Eigen::Vector2d> plan = plan_of(explorer);
+  const Eigen::Vector2d goal = explorer.goal().position;
+  ASSERT_GT(goal.x(), 4.0);
+  double farthest_from_goal_s = 0.0;  // when the straight-line distance was largest
+  double largest_distance_m = 0.0;
+  const double dt = 0.1;
+  double t = dt;
+  for (; explorer.state() == ExploreState::drive && t < 200.0; t += dt) {
+    const core::Pose2 pose = along(plan, params.max_speed_mps * t);
+    const double distance = (Eigen::Vector2d(pose.x, pose.y) - goal).norm();
+    if (distance > largest_distance_m) {
+      largest_distance_m = distance;
+      farthest_from_goal_s = t;
+    }
+    explorer.step(input_at(scene.grid.view(), pose.x, pose.y, pose.theta, t, false));
+  }
+  EXPECT_GT(farthest_from_goal_s, params.explore.stuck_timeout_s);  // the old rule would have failed it
+  EXPECT_EQ(explorer.counters().stuck, 0U);
+  EXPECT_EQ(explorer.counters().goal_failures, 0U);
+  EXPECT_EQ(explorer.counters().goals_reached, 1U);
+
+  Explorer still(params);
+  still.step(input_at(scene.grid.view(), 2.0, 5.0, -1.57, 0.0, true));
+  for (t = dt; still.counters().stuck == 0 && t < 30.0; t += dt) {
+    still.step(input_at(scene.grid.view(), 2.0, 5.0, -1.57, t, false));
+  }
+  EXPECT_EQ(still.counters().stuck, 1U);
+  EXPECT_NEAR(t, params.explore.stuck_timeout_s, 0.25);
+}
+
+// Progress on every plan resets the stuck timer, so a goal has a time limit of its own:
+// stuck_timeout_s plus goal_time_factor times its longest plan's driving time. A robot
+// creeping along at 0.05 m/s (progress every 2 s) runs out of it; with the factor at 0, not.
+TEST(Explorer, AGoalTakingFarLongerThanItsPlanFailsOnItsTimeLimit) {
+  for (const double factor : {1.0, 0.0}) {
+    WallToGoRound scene;
+    ExploreParams params = no_look_params(100, 60);
+    params.explore.stuck_timeout_s = 10.0;
+    params.explore.goal_time_factor = factor;
+    Explorer explorer(params);
+    explorer.step(input_at(scene.grid.view(), 2.0, 5.0, -1.57, 0.0, true));
+    ASSERT_EQ(explorer.state(), ExploreState::drive);
+    const std::vector<Eigen::Vector2d> plan = plan_of(explorer);
+    const double plan_m = (plan.front() - Eigen::Vector2d(2.0, 5.0)).norm() + length_of(plan);
+    const double limit_s = params.explore.stuck_timeout_s + factor * plan_m / params.max_speed_mps;
+    double t = 0.1;
+    for (; explorer.counters().goal_failures == 0 && explorer.counters().goals_reached == 0 && t < 400.0; t += 0.1) {
+      const core::Pose2 pose = along(plan, 0.05 * t);
+      explorer.step(input_at(scene.grid.view(), pose.x, pose.y, pose.theta, t, false));
+    }
+    EXPECT_EQ(explorer.counters().stuck, 0U) << factor;
+    if (factor == 0.0) {
+      EXPECT_EQ(explorer.counters().goal_timeouts, 0U);
+      EXPECT_EQ(explorer.counters().goals_reached, 1U);
+      continue;
+    }
+    EXPECT_EQ(explorer.counters().goal_timeouts, 1U);
+    EXPECT_EQ(explorer.counters().goal_failures, 1U);
+    EXPECT_NEAR(t - 0.1, limit_s, 0.15);  // t: one step past the failing one
+    bool journaled = false;
+    for (std::size_t i = 0; i < explorer.journal().size(); ++i) {
+      journaled = journaled || explorer.journal()[i].kind == ExploreEventKind::goal_timeout;
+    }
+    EXPECT_TRUE(journaled);
+  }
 }
 
 TEST(Explorer, BlacklistsGoalsThatKeepFailingThenFinishes) {

@@ -24,8 +24,9 @@ enum class ExploreEventKind : std::uint8_t {
   goal_abandoned,    // its value fell below min_goal_value on the way
   plan_blocked,      // an update made the rest of the plan impassable: replanning
   no_plan,           // A* found no path to the goal (or the start)
-  stuck,             // no progress towards the goal for stuck_timeout_s
-  goal_failed,       // the goal is given up (after no_plan or stuck)
+  stuck,             // no progress along the plan for stuck_timeout_s
+  goal_timeout,      // pursued longer than its plans' driving time allows (goal_time_factor)
+  goal_failed,       // the goal is given up (after no_plan, stuck or goal_timeout)
   goal_blacklisted,  // ... for good: it failed goal_failures_before_blacklist times
   safety_stop,       // the next stretch would touch an occupied cell
   stall,             // forward motion commanded, none made: a contact

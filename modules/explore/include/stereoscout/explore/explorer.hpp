@@ -66,12 +66,13 @@ struct ExploreCounters {
   std::uint64_t goals_chosen = 0;
   std::uint64_t goals_reached = 0;
   std::uint64_t goals_abandoned = 0;   // value fell below min_goal_value while driving
-  std::uint64_t goal_failures = 0;     // no plan, or no progress for stuck_timeout_s
+  std::uint64_t goal_failures = 0;     // no plan, no progress for stuck_timeout_s, or out of time
   std::uint64_t goals_blacklisted = 0;
   std::uint64_t plan_failures = 0;
   std::uint64_t replans = 0;           // plan blocked after an observation update
   std::uint64_t goal_shifts = 0;       // plans to a passable cell near a goal whose own cell became impassable
   std::uint64_t stuck = 0;
+  std::uint64_t goal_timeouts = 0;    // pursued longer than goal_time_factor allows
   std::uint64_t safety_stops = 0;
   std::uint64_t turns_to_face_plan = 0;  // ticks turning to face the plan instead of a safety stop
   std::uint64_t stalls = 0;            // forward motion commanded, none made: a contact
@@ -106,6 +107,9 @@ class Explorer {
   bool clear_contacts(const ExploreInput& input);
   void check_plan(const ExploreInput& input);
   bool replan(const ExploreInput& input);
+  void begin_pursuit(const ExploreInput& input);
+  double remaining_path_m(const Eigen::Vector2d& position) const;
+  bool out_of_time(double time_s) const;
   void choose_goal(const ExploreInput& input);
   void finish_exploring(const ExploreInput& input, FinishReason reason);
   void goal_failed(const ExploreInput& input);
@@ -157,9 +161,11 @@ class Explorer {
   bool return_after_look_ = false;  // after the look: back on the way to the start
   bool resume_after_look_ = false;  // after the look: back on the way to the same goal
   bool keep_progress_after_look_ = false;  // the look was a safety stop's: keep the stuck timer
-  // Progress towards the goal.
+  // Progress towards the goal: the plan's remaining length, and how long the goal may take.
   double best_goal_distance_m_ = 0.0;
   double last_progress_time_s_ = 0.0;
+  double goal_started_s_ = 0.0;
+  double longest_plan_m_ = 0.0;
 };
 
 }  // namespace stereoscout::explore
