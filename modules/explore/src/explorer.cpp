@@ -121,10 +121,11 @@ void Explorer::rebuild(const ExploreInput& input) {
 }
 
 void Explorer::rebuild_map(const ExploreInput& input) {
-  // Unknown cells may be crossed near the robot, and near the start on the way back: the robot
-  // started in a disc the camera could not see (its floor was too near).
-  const Eigen::Vector2d extra =
-      state_ == ExploreState::returning ? position_of(start_pose_) : position_of(input.pose);
+  // Unknown cells may be crossed near the robot and near the start, all the run: the robot
+  // started in a disc the camera could not see (its floor was too near), and the strip of it
+  // that no later view covered splits the corridor it started in (the office: the way out of
+  // the first office led through it).
+  const Eigen::Vector2d extra = position_of(start_pose_);
   planning_grid_ = contacts_.stamp(input.grid, input.time_s);
   planning_on_copy_ = planning_grid_.cells != input.grid.cells;
   map_.rebuild(planning_grid_, position_of(input.pose), extra);

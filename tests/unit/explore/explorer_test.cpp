@@ -556,6 +556,25 @@ TEST(Explorer, AGoalTakingFarLongerThanItsPlanFailsOnItsTimeLimit) {
   }
 }
 
+// The robot starts in a disc whose floor the camera cannot see. A strip of it that no later
+// view covered can be the only way on (the office's corridor, beside the first office's
+// door): its cells stay passable all the run, not only near the robot or on the way back.
+TEST(Explorer, TheStartsBlindDiscStaysPassableAfterTheRobotLeavesIt) {
+  TestGrid grid{100, 60, CellState::free};
+  grid.walls();
+  grid.fill(80, 1, 99, 59, CellState::unknown);
+  grid.fill(30, 1, 32, 59, CellState::occupied);  // a wall at x = 3 m ...
+  grid.fill(30, 24, 32, 36, CellState::unknown);  // ... open only where the start's disc was
+  Explorer explorer(no_look_params(100, 60));
+  explorer.step(input_at(grid.view(), 2.8, 3.0, 0.0, 0.0, true));
+  ASSERT_EQ(explorer.state(), ExploreState::drive);
+  explorer.step(input_at(grid.view(), 1.0, 1.0, 0.0, 1.0, true));  // 2.4 m from the gap
+  EXPECT_TRUE(explorer.navigation_map().passable(30, 30));
+  EXPECT_TRUE(explorer.navigation_map().passable(31, 30));
+  EXPECT_FALSE(explorer.navigation_map().passable(30, 45));  // the wall itself
+  EXPECT_EQ(explorer.counters().goal_failures, 0U);
+}
+
 TEST(Explorer, BlacklistsGoalsThatKeepFailingThenFinishes) {
   Corridor scene;
   ExploreParams params = no_look_params(100, 60);
