@@ -19,8 +19,9 @@
 // deviation of its end's range from a disparity error of sigma_d_px, range * sigma_d / d
 // (0.11 m at 3 m, 0.2 m at 4 m for the paper's 0.5 px): the farthest of a column's floor
 // points is the one whose error put it farthest out, at a wall's base beyond the wall (the
-// grid's free_end_sigmas, occupancy_grid.hpp), unless floor_onto_plane has moved it back. Ranges are capped at max_range_m: farther
-// obstacles are ignored and farther floor is reported as free up to the cap.
+// grid's free_end_sigmas, occupancy_grid.hpp), unless floor_onto_plane has moved it back.
+// Ranges are capped at max_range_m: farther obstacles are ignored and farther floor is
+// reported as free up to the cap.
 // A table top at 0.75 m is below a 1.2 m robot, so it is an obstacle even though the space
 // under it is free floor: the robot cannot drive under it.
 // Every column also carries floor_visible_from_m: where the ray of the image's bottom
