@@ -44,7 +44,7 @@ Explorer::Explorer(const ExploreParams& params)
               params.explore.goal_failures_before_blacklist),
       stall_(params.explore),
       contacts_(params.explore, params.max_width, params.max_height),
-      fresh_(params.explore, params.max_width, params.max_height),
+      traces_(params.explore, params.max_width, params.max_height),
       journal_(static_cast<std::size_t>(params.explore.event_memory)),
       planner_(params),
       follower_(params),
@@ -115,7 +115,7 @@ void Explorer::start(const ExploreInput& input) {
 
 void Explorer::rebuild(const ExploreInput& input) {
   rebuild_needed_ = false;
-  fresh_.observe(input.grid, input.time_s);
+  traces_.observe(input.grid, input.time_s);
   rebuild_map(input);
   if (state_ == ExploreState::drive || state_ == ExploreState::returning) check_plan(input);
 }
@@ -128,7 +128,10 @@ void Explorer::rebuild_map(const ExploreInput& input) {
   const Eigen::Vector2d extra = position_of(start_pose_);
   planning_grid_ = contacts_.stamp(input.grid, input.time_s);
   planning_on_copy_ = planning_grid_.cells != input.grid.cells;
-  map_.rebuild(planning_grid_, position_of(input.pose), extra);
+  // Plans cross a person's old traces; the safety check (on planning_grid_) does not.
+  const GridView navigation_grid = traces_.forget_traces(planning_grid_, input.time_s);
+  if (traces_.forgotten_last() > 0) ++counters_.rebuilds_crossing_traces;
+  map_.rebuild(navigation_grid, position_of(input.pose), extra);
   ++counters_.map_rebuilds;
 }
 
@@ -328,7 +331,11 @@ void Explorer::look_step(const ExploreInput& input, ExploreOutput& output) {
 
 void Explorer::finish_look(const ExploreInput& input) {
   fresh_look_ = true;
+  // What the look saw still standing near the robot is no person's trace. And traces that aged
+  // while the robot stood (no update rebuilt the map) are crossed from now on.
+  counters_.traces_confirmed += traces_.confirm_near(input.grid, position_of(input.pose), input.time_s);
   if (!return_after_look_ && !resume_after_look_) {
+    rebuild_map(input);
     state_ = ExploreState::choose_goal;
     return;
   }
@@ -473,7 +480,7 @@ bool Explorer::back_off_step(const ExploreInput& input, ExploreOutput& output) {
 bool Explorer::disc_is_clear(const GridView& grid, const Eigen::Vector2d& centre, const Eigen::Vector2d& robot,
                              double time_s) const {
   const double deep = std::max(0.0, params_.robot_radius_m - grid.resolution_m);
-  const double widest = params_.robot_radius_m + std::max(0.0, fresh_.margin_m());
+  const double widest = params_.robot_radius_m + std::max(0.0, traces_.margin_m());
   const int reach = static_cast<int>(std::ceil(widest / grid.resolution_m)) + 1;
   const Eigen::Vector2i middle = grid.cell_of(centre);
   for (int y = middle.y() - reach; y <= middle.y() + reach; ++y) {
@@ -481,7 +488,7 @@ bool Explorer::disc_is_clear(const GridView& grid, const Eigen::Vector2d& centre
       if (!grid.contains(x, y) || grid.at(x, y) != CellState::occupied) continue;
       const Eigen::Vector2d cell = grid.center(x, y);
       const double ahead = (cell - centre).norm();
-      const double radius = params_.robot_radius_m + (fresh_.fresh(grid, x, y, time_s) ? fresh_.margin_m() : 0.0);
+      const double radius = params_.robot_radius_m + (traces_.fresh(grid, x, y, time_s) ? traces_.margin_m() : 0.0);
       if (ahead >= radius) continue;
       // A cell the disc already overlaps where it stands does not stop it, unless the move
       // goes deeper into it (a grazed obstacle: pushing on would be a collision); cells deep

@@ -781,6 +781,98 @@ TEST(Explorer, AReturnBlockedByAPasserByLooksAndTriesAgain) {
   EXPECT_EQ(explorer.counters().return_failures, 3U);
 }
 
+// A person walked past the only door while the robot looked out of its room, and left
+// occupied cells across the door's far side that no view from the room can clear. Once they
+// are trace_forget_after_s old, plans cross them, but the safety check does not: the robot
+// stops before them and looks, and goes on if the look saw the person gone.
+struct TraceInTheDoor {
+  DoorScene scene;
+  ExploreParams params = test_params(100, 60);
+  TraceInTheDoor() {
+    params.explore.return_to_start = false;
+    params.explore.trace_forget_after_s = 10.0;
+    params.explore.trace_confirm_radius_m = 1.0;
+    params.robot_radius_m = 0.33;
+  }
+  void walk_past(CellState state) { scene.grid.fill(32, 26, 33, 35, state); }
+};
+
+// Moves the robot along y = 3.05 m (the plan's row) in 5 cm steps, one tick each, while the explorer drives it
+// forward; returns the x where it stopped (time_s: that tick's time).
+double drive_until_stopped(Explorer& explorer, const GridView& grid, double x, double& time_s) {
+  for (; x < 4.0; x += 0.05) {
+    time_s += 0.5;
+    const ExploreOutput output = explorer.step(input_at(grid, x, 3.05, 0.0, time_s, false));
+    if (output.state != ExploreState::drive || output.drive.linear_mps <= 0.0) break;
+  }
+  return x;
+}
+
+// True when a plan cell lies beyond the trace (x = 3.25 m).
+bool plan_leads_past_the_door(const Explorer& explorer) {
+  for (const Eigen::Vector2i& cell : explorer.plan().cells) {
+    if (cell.x() > 32) return true;
+  }
+  return false;
+}
+
+TEST(Explorer, APersonsOldTraceInTheOnlyDoorIsCrossedByPlansNotByTheSafetyCheck) {
+  TraceInTheDoor door;
+  Explorer explorer(door.params);
+  const GridView grid = door.scene.grid.view();
+  explorer.step(input_at(grid, 1.5, 3.05, 0.0, 0.0, true));
+  ASSERT_EQ(finish_a_look(explorer, grid, 1.5, 3.05, 0.5).state, ExploreState::drive);
+  door.walk_past(CellState::occupied);
+  // Fresh: the person is there now. The goal beyond fails, nothing else is left: look again.
+  EXPECT_EQ(explorer.step(input_at(grid, 1.5, 3.05, 0.0, 1.0, true)).state, ExploreState::look_around);
+  EXPECT_EQ(explorer.counters().goal_failures, 1U);
+  EXPECT_EQ(explorer.counters().rebuilds_crossing_traces, 0U);
+  // The look ends 10 s later, far from the door: the trace is crossed, the robot drives.
+  const ExploreOutput driving = finish_a_look(explorer, grid, 1.5, 3.05, 11.0);
+  ASSERT_EQ(driving.state, ExploreState::drive);
+  EXPECT_GT(driving.drive.linear_mps, 0.0);
+  EXPECT_TRUE(plan_leads_past_the_door(explorer));
+  EXPECT_EQ(explorer.counters().traces_confirmed, 0U);
+  EXPECT_GE(explorer.counters().rebuilds_crossing_traces, 1U);
+  // At the door the cells are still occupied in the grid: the safety check stops the robot
+  // before its disc (0.33 m) reaches them (x from 3.2 m).
+  double time_s = 11.0;
+  const double stopped_x = drive_until_stopped(explorer, grid, 1.5, time_s);
+  EXPECT_LT(stopped_x, 3.2 - 0.33);
+  EXPECT_GT(stopped_x, 2.0);
+  EXPECT_EQ(explorer.state(), ExploreState::look_around);
+  EXPECT_EQ(explorer.counters().safety_stops, 1U);
+  // The look sees the floor there: the person has gone. The robot goes on through the door.
+  door.walk_past(CellState::free);
+  explorer.step(input_at(grid, stopped_x, 3.05, 0.0, time_s + 1.0, true));
+  const ExploreOutput through = finish_a_look(explorer, grid, stopped_x, 3.05, time_s + 2.0);
+  EXPECT_EQ(through.state, ExploreState::drive);
+  EXPECT_GT(through.drive.linear_mps, 0.0);
+  EXPECT_TRUE(plan_leads_past_the_door(explorer));
+  EXPECT_EQ(explorer.counters().traces_confirmed, 0U);
+  EXPECT_EQ(explorer.counters().goal_failures, 1U);
+}
+
+// The same, but the look from the door still sees the cells occupied: they are an obstacle,
+// which closes the door; the goal beyond fails.
+TEST(Explorer, ATraceStillThereAfterALookNearItIsAnObstacleAgain) {
+  TraceInTheDoor door;
+  Explorer explorer(door.params);
+  const GridView grid = door.scene.grid.view();
+  explorer.step(input_at(grid, 1.5, 3.05, 0.0, 0.0, true));
+  ASSERT_EQ(finish_a_look(explorer, grid, 1.5, 3.05, 0.5).state, ExploreState::drive);
+  door.walk_past(CellState::occupied);
+  explorer.step(input_at(grid, 1.5, 3.05, 0.0, 1.0, true));
+  ASSERT_EQ(finish_a_look(explorer, grid, 1.5, 3.05, 11.0).state, ExploreState::drive);
+  double time_s = 11.0;
+  const double stopped_x = drive_until_stopped(explorer, grid, 1.5, time_s);
+  ASSERT_EQ(explorer.state(), ExploreState::look_around);
+  finish_a_look(explorer, grid, stopped_x, 3.05, time_s + 2.0);
+  EXPECT_EQ(explorer.counters().traces_confirmed, 9U);
+  EXPECT_EQ(explorer.counters().goal_failures, 2U);
+  EXPECT_FALSE(plan_leads_past_the_door(explorer));
+}
+
 TEST(Explorer, StopsExploringAtTheTimeLimit) {
   Corridor scene;
   ExploreParams params = no_look_params(100, 60);

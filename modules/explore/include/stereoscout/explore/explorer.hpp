@@ -16,7 +16,7 @@
 // forward motion the next stretch of the plan (and the point just ahead of the robot) is
 // checked against the cells the current grid holds as occupied, and the robot stops if the
 // disc would touch one it does not already touch (optionally keeping fresh_obstacle_margin_m
-// more from cells that just turned occupied where the floor was free: fresh_obstacles.hpp).
+// more from cells that just turned occupied where the floor was free: trace_memory.hpp).
 // If facing the plan's next waypoint would clear the way (pure pursuit cut a corner beside an
 // obstacle), it turns in place to face it instead. Otherwise, with pan_at_goal, it looks around
 // (a standing robot makes no observation update, so nothing would clear a person's trace)
@@ -32,12 +32,12 @@
 #include "stereoscout/core/messages.hpp"
 #include "stereoscout/explore/contact_memory.hpp"
 #include "stereoscout/explore/explore_journal.hpp"
-#include "stereoscout/explore/fresh_obstacles.hpp"
 #include "stereoscout/explore/goal_value.hpp"
 #include "stereoscout/explore/grid_view.hpp"
 #include "stereoscout/explore/navigation_map.hpp"
 #include "stereoscout/explore/path_follower.hpp"
 #include "stereoscout/explore/path_planner.hpp"
+#include "stereoscout/explore/trace_memory.hpp"
 
 namespace stereoscout::explore {
 
@@ -82,6 +82,8 @@ struct ExploreCounters {
   std::uint64_t looks_before_giving_up = 0;  // no goal, or no way back: one more look first
   std::uint64_t back_offs = 0;       // backed off after a stall
   std::uint64_t contact_clears = 0;  // contacts forgotten before concluding "explored" or "no way back"
+  std::uint64_t rebuilds_crossing_traces = 0;  // map rebuilds that let plans cross a person's old trace
+  std::uint64_t traces_confirmed = 0;  // trace cells still occupied after a look: obstacles since
 };
 
 class Explorer {
@@ -132,9 +134,9 @@ class Explorer {
   GoalMemory memory_;
   StallDetector stall_;
   ContactMemory contacts_;
-  FreshObstacles fresh_;
+  TraceMemory traces_;
   ExploreJournal journal_;
-  GridView planning_grid_;  // the input grid with the contact cells occupied (last rebuild)
+  GridView planning_grid_;  // the input grid with the contact cells occupied (last rebuild): the safety check's
   bool planning_on_copy_ = false;  // planning_grid_ is the contact memory's stamped copy
   bool stalled_ = false;           // this tick
   PathPlanner planner_;

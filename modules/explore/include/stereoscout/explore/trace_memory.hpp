@@ -1,0 +1,72 @@
+#pragma once
+// Obstacles that appeared where the grid held free floor: usually a person walking. Cells
+// that turn occupied from unknown (a first sighting) are not counted; a static obstacle seen
+// for the first time is an ordinary obstacle. Two uses:
+//
+// Fresh (the person is there now). The grid changes only at observation updates (after 7 cm
+// of motion, at most 2 Hz in the stack), and a person walking at 0.5 m/s moves 0.3 m in
+// between, so the safety check can keep explore.fresh_obstacle_margin_m more clearance from
+// cells that turned occupied within fresh_obstacle_hold_s. Off by default (margin 0): at
+// 0.3 m it did not reduce the robot's contacts with walking people in the three worlds, and it
+// added safety stops (docs/results.md).
+//
+// Traces (the person has walked on). The grid clears a person's cells only when a later ray
+// passes through them, and from inside a room the robot does not see the corridor beyond its
+// door: a person who walked past the door while the robot looked out left cells that shut it
+// in (the office). So a cell that turned occupied at least explore.trace_forget_after_s ago
+// is a trace, and planning crosses it (forget_traces()). The safety check does not: it still
+// stops the robot before the cell, and the look that follows re-observes it. Traces within
+// trace_confirm_radius_m that are still occupied after a look are obstacles from then on
+// (confirm_near()): a static obstacle that the grid first held free costs one stop and look.
+//
+// observe() compares the grid with the one it saw last; it runs after every observation
+// update. All buffers are sized for the largest grid at construction; nothing is allocated
+// after that.
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "stereoscout/explore/grid_view.hpp"
+
+namespace stereoscout::explore {
+
+class TraceMemory {
+ public:
+  TraceMemory(const core::ExploreConfig& config, int max_width, int max_height);
+
+  void observe(const GridView& grid, double time_s);
+  // True when cell (x, y) of the grid last observed turned from free to occupied within
+  // fresh_obstacle_hold_s before time_s.
+  bool fresh(const GridView& grid, int x, int y, double time_s) const;
+  double margin_m() const { return margin_m_; }
+
+  // `grid` (the grid last observed, or a copy of it with more cells occupied) with its traces
+  // free: a copy in the memory's own buffer, or `grid` itself when there is no trace (or
+  // forgetting is off, or the geometry is not the one observed). Valid until the next call.
+  GridView forget_traces(const GridView& grid, double time_s);
+  // Trace cells within trace_confirm_radius_m of `centre` that `grid` still holds occupied
+  // become obstacles; returns how many.
+  std::size_t confirm_near(const GridView& grid, const Eigen::Vector2d& centre, double time_s);
+
+  std::size_t forgotten_last() const { return forgotten_last_; }  // cells freed by the last forget_traces()
+  std::uint64_t confirmed() const { return confirmed_; }
+
+ private:
+  bool trace(std::size_t i, double time_s) const;
+  bool same_geometry(const GridView& grid) const { return grid.width == width_ && grid.height == height_; }
+
+  double margin_m_;
+  double hold_s_;
+  double forget_after_s_;
+  double confirm_radius_m_;
+  int width_ = 0;
+  int height_ = 0;
+  std::vector<std::uint8_t> previous_;  // CellState of the last grid observed
+  std::vector<float> turned_occupied_s_;  // when the cell last turned from free to occupied
+  std::vector<std::uint8_t> forgotten_;  // forget_traces()'s copy
+  std::size_t forgotten_last_ = 0;
+  std::uint64_t confirmed_ = 0;
+};
+
+}  // namespace stereoscout::explore

@@ -1,0 +1,94 @@
+#include "stereoscout/explore/trace_memory.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+namespace stereoscout::explore {
+namespace {
+
+constexpr float kNever = -std::numeric_limits<float>::infinity();
+
+}  // namespace
+
+TraceMemory::TraceMemory(const core::ExploreConfig& config, int max_width, int max_height)
+    : margin_m_(config.fresh_obstacle_margin_m),
+      hold_s_(config.fresh_obstacle_hold_s),
+      forget_after_s_(config.trace_forget_after_s),
+      confirm_radius_m_(config.trace_confirm_radius_m),
+      previous_(static_cast<std::size_t>(max_width) * static_cast<std::size_t>(max_height),
+                static_cast<std::uint8_t>(CellState::unknown)),
+      turned_occupied_s_(previous_.size(), kNever),
+      forgotten_(forget_after_s_ > 0.0 ? previous_.size() : 0U) {}
+
+void TraceMemory::observe(const GridView& grid, double time_s) {
+  const std::size_t count = static_cast<std::size_t>(grid.width) * static_cast<std::size_t>(grid.height);
+  if (count > previous_.size() || (margin_m_ <= 0.0 && forget_after_s_ <= 0.0)) return;
+  if (!same_geometry(grid)) {
+    // A new grid geometry: nothing to compare with; this grid is the reference.
+    width_ = grid.width;
+    height_ = grid.height;
+    for (std::size_t i = 0; i < count; ++i) {
+      previous_[i] = grid.cells[i];
+      turned_occupied_s_[i] = kNever;
+    }
+    return;
+  }
+  const auto free = static_cast<std::uint8_t>(CellState::free);
+  const auto occupied = static_cast<std::uint8_t>(CellState::occupied);
+  for (std::size_t i = 0; i < count; ++i) {
+    if (previous_[i] == free && grid.cells[i] == occupied) turned_occupied_s_[i] = static_cast<float>(time_s);
+    previous_[i] = grid.cells[i];
+  }
+}
+
+bool TraceMemory::fresh(const GridView& grid, int x, int y, double time_s) const {
+  if (!same_geometry(grid) || !grid.contains(x, y)) return false;
+  return time_s - static_cast<double>(turned_occupied_s_[grid.index(x, y)]) <= hold_s_;
+}
+
+// Occupied when last observed (a cell seen free again is no trace), and turned so long ago.
+bool TraceMemory::trace(std::size_t i, double time_s) const {
+  return previous_[i] == static_cast<std::uint8_t>(CellState::occupied) && turned_occupied_s_[i] != kNever &&
+         time_s - static_cast<double>(turned_occupied_s_[i]) >= forget_after_s_;
+}
+
+GridView TraceMemory::forget_traces(const GridView& grid, double time_s) {
+  forgotten_last_ = 0;
+  if (forget_after_s_ <= 0.0 || !same_geometry(grid)) return grid;
+  const std::size_t count = static_cast<std::size_t>(grid.width) * static_cast<std::size_t>(grid.height);
+  bool copied = false;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (!trace(i, time_s) || grid.cells[i] != static_cast<std::uint8_t>(CellState::occupied)) continue;
+    if (!copied) {
+      std::memcpy(forgotten_.data(), grid.cells, count);
+      copied = true;
+    }
+    forgotten_[i] = static_cast<std::uint8_t>(CellState::free);
+    ++forgotten_last_;
+  }
+  if (!copied) return grid;
+  GridView forgotten = grid;
+  forgotten.cells = forgotten_.data();
+  return forgotten;
+}
+
+std::size_t TraceMemory::confirm_near(const GridView& grid, const Eigen::Vector2d& centre, double time_s) {
+  if (forget_after_s_ <= 0.0 || !same_geometry(grid)) return 0;
+  const int reach = static_cast<int>(std::ceil(confirm_radius_m_ / grid.resolution_m));
+  const Eigen::Vector2i middle = grid.cell_of(centre);
+  std::size_t confirmed = 0;
+  for (int y = middle.y() - reach; y <= middle.y() + reach; ++y) {
+    for (int x = middle.x() - reach; x <= middle.x() + reach; ++x) {
+      if (!grid.contains(x, y) || (grid.center(x, y) - centre).norm() > confirm_radius_m_) continue;
+      const std::size_t i = grid.index(x, y);
+      if (!trace(i, time_s) || grid.cells[i] != static_cast<std::uint8_t>(CellState::occupied)) continue;
+      turned_occupied_s_[i] = kNever;
+      ++confirmed;
+    }
+  }
+  confirmed_ += confirmed;
+  return confirmed;
+}
+
+}  // namespace stereoscout::explore

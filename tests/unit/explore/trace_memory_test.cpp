@@ -1,0 +1,100 @@
+// Cells that turn from free to occupied (a person walking into view) are fresh for
+// fresh_obstacle_hold_s, and traces that planning crosses after trace_forget_after_s; a first
+// sighting (unknown to occupied) is neither.
+#include <gtest/gtest.h>
+
+#include "stereoscout/core/allocation_counter.hpp"
+#include "stereoscout/explore/trace_memory.hpp"
+#include "test_grid.hpp"
+
+namespace stereoscout::explore {
+namespace {
+
+using testing::TestGrid;
+
+TEST(TraceMemory, FreeToOccupiedIsFreshForTheHoldTimeAndFirstSightingsAreNot) {
+  core::ExploreConfig config;
+  config.fresh_obstacle_margin_m = 0.3;
+  config.fresh_obstacle_hold_s = 3.0;
+  TraceMemory fresh(config, 20, 20);
+  TestGrid grid(20, 20, CellState::free);
+  grid.fill(15, 0, 20, 20, CellState::unknown);
+  fresh.observe(grid.view(), 0.0);
+  grid.set(5, 5, CellState::occupied);    // where the floor was free
+  grid.set(16, 5, CellState::occupied);   // never seen before
+  fresh.observe(grid.view(), 10.0);
+  EXPECT_TRUE(fresh.fresh(grid.view(), 5, 5, 10.0));
+  EXPECT_TRUE(fresh.fresh(grid.view(), 5, 5, 13.0));
+  EXPECT_FALSE(fresh.fresh(grid.view(), 5, 5, 13.1));
+  EXPECT_FALSE(fresh.fresh(grid.view(), 16, 5, 10.0));
+  EXPECT_FALSE(fresh.fresh(grid.view(), 6, 5, 10.0));
+  // Free again, then occupied again: fresh from the new time.
+  grid.set(5, 5, CellState::free);
+  fresh.observe(grid.view(), 20.0);
+  grid.set(5, 5, CellState::occupied);
+  fresh.observe(grid.view(), 21.0);
+  EXPECT_TRUE(fresh.fresh(grid.view(), 5, 5, 23.5));
+}
+
+TEST(TraceMemory, ObserveDoesNotAllocateAndIsOffWithNoMarginAndNoForgetting) {
+  core::ExploreConfig config;
+  config.fresh_obstacle_margin_m = 0.3;
+  TraceMemory fresh(config, 50, 50);
+  TestGrid grid(50, 50, CellState::free);
+  fresh.observe(grid.view(), 0.0);
+  grid.set(10, 10, CellState::occupied);
+  const core::AllocationScope scope;
+  fresh.observe(grid.view(), 1.0);
+  EXPECT_EQ(scope.allocations(), 0U);
+  EXPECT_TRUE(fresh.fresh(grid.view(), 10, 10, 1.0));
+
+  config.fresh_obstacle_margin_m = 0.0;
+  config.trace_forget_after_s = 0.0;
+  TraceMemory off(config, 50, 50);
+  off.observe(grid.view(), 0.0);
+  grid.set(20, 20, CellState::occupied);
+  off.observe(grid.view(), 1.0);
+  EXPECT_FALSE(off.fresh(grid.view(), 20, 20, 1.0));
+  EXPECT_EQ(off.forget_traces(grid.view(), 100.0).cells, grid.view().cells);
+}
+
+TEST(TraceMemory, AnOldTraceIsForgottenForPlanningUntilALookNearItConfirmsIt) {
+  core::ExploreConfig config;
+  config.trace_forget_after_s = 10.0;
+  config.trace_confirm_radius_m = 1.0;
+  TraceMemory traces(config, 40, 20);
+  TestGrid grid(40, 20, CellState::free);
+  grid.fill(30, 0, 40, 20, CellState::unknown);
+  traces.observe(grid.view(), 0.0);
+  grid.set(5, 5, CellState::occupied);    // a person walked here
+  grid.set(25, 5, CellState::occupied);   // and here
+  grid.set(31, 5, CellState::occupied);   // a first sighting: an obstacle
+  traces.observe(grid.view(), 1.0);
+  // Not yet old: the grid itself.
+  EXPECT_EQ(traces.forget_traces(grid.view(), 10.9).cells, grid.view().cells);
+  EXPECT_EQ(traces.forgotten_last(), 0U);
+  const GridView forgotten = traces.forget_traces(grid.view(), 11.0);
+  ASSERT_NE(forgotten.cells, grid.view().cells);
+  EXPECT_EQ(traces.forgotten_last(), 2U);
+  EXPECT_EQ(forgotten.at(5, 5), CellState::free);
+  EXPECT_EQ(forgotten.at(25, 5), CellState::free);
+  EXPECT_EQ(forgotten.at(31, 5), CellState::occupied);
+  EXPECT_EQ(forgotten.at(30, 5), CellState::unknown);
+  // A look from (0.55, 1.05): the trace within a metre is still there, so it is an obstacle;
+  // the one 2 m away was out of reach of the look and stays a trace.
+  const core::AllocationScope scope;
+  EXPECT_EQ(traces.confirm_near(grid.view(), Eigen::Vector2d(0.55, 1.05), 12.0), 1U);
+  EXPECT_EQ(traces.confirmed(), 1U);
+  const GridView after = traces.forget_traces(grid.view(), 12.0);
+  EXPECT_EQ(scope.allocations(), 0U);
+  EXPECT_EQ(traces.forgotten_last(), 1U);
+  EXPECT_EQ(after.at(5, 5), CellState::occupied);
+  EXPECT_EQ(after.at(25, 5), CellState::free);
+  // A trace seen free again is no trace any more.
+  grid.set(25, 5, CellState::free);
+  traces.observe(grid.view(), 13.0);
+  EXPECT_EQ(traces.forget_traces(grid.view(), 30.0).cells, grid.view().cells);
+}
+
+}  // namespace
+}  // namespace stereoscout::explore
