@@ -235,7 +235,7 @@ void write_counters(report::JsonWriter& json, const stack::Stack& stack) {
       .unsigned_integer("contact_cells_recorded", stack.explorer().contacts().recorded())
       .unsigned_integer("contact_cells_held", stack.explorer().contacts().held())
       .unsigned_integer("contact_clears", e.contact_clears)
-      .unsigned_integer("rebuilds_crossing_traces", e.rebuilds_crossing_traces)
+      .unsigned_integer("trace_crossings", e.trace_crossings)
       .unsigned_integer("traces_confirmed", e.traces_confirmed)
       .unsigned_integer("looks", e.looks)
       .unsigned_integer("events_recorded", stack.explorer().journal().recorded())

@@ -17,6 +17,7 @@ const char* to_string(ExploreEventKind kind) {
     case ExploreEventKind::stall: return "stall";
     case ExploreEventKind::look: return "look";
     case ExploreEventKind::contacts_cleared: return "contacts_cleared";
+    case ExploreEventKind::crossing_traces: return "crossing_traces";
     case ExploreEventKind::explored: return "explored";
     case ExploreEventKind::time_limit: return "time_limit";
     case ExploreEventKind::return_failed: return "return_failed";

@@ -128,9 +128,9 @@ void Explorer::rebuild_map(const ExploreInput& input) {
   const Eigen::Vector2d extra = position_of(start_pose_);
   planning_grid_ = contacts_.stamp(input.grid, input.time_s);
   planning_on_copy_ = planning_grid_.cells != input.grid.cells;
-  // Plans cross a person's old traces; the safety check (on planning_grid_) does not.
-  const GridView navigation_grid = traces_.forget_traces(planning_grid_, input.time_s);
-  if (traces_.forgotten_last() > 0) ++counters_.rebuilds_crossing_traces;
+  // While crossing traces, plans cross a person's old traces; the safety check (on
+  // planning_grid_) never does.
+  const GridView navigation_grid = crossing_traces_ ? traces_.forget_traces(planning_grid_, input.time_s) : planning_grid_;
   map_.rebuild(navigation_grid, position_of(input.pose), extra);
   ++counters_.map_rebuilds;
 }
@@ -146,6 +146,31 @@ bool Explorer::clear_contacts(const ExploreInput& input) {
   note(ExploreEventKind::contacts_cleared, input);
   rebuild_map(input);
   return true;
+}
+
+// A person who walked past a door while the robot looked out of the room leaves cells beyond
+// it that no view from inside clears, and they can shut the robot in. So neither "no plan" nor
+// "nothing left" is concluded on a person's old traces (trace_memory.hpp): the map is rebuilt
+// with them free, and the plans on it cross them until the goal is reached or fails. True when
+// there were any. The safety check still stops the robot before such a cell; the look that
+// follows clears it, or confirms it as an obstacle.
+bool Explorer::start_crossing_traces(const ExploreInput& input) {
+  if (crossing_traces_ || params_.explore.trace_forget_after_s <= 0.0) return false;
+  crossing_traces_ = true;
+  rebuild_map(input);
+  if (traces_.forgotten_last() == 0) {
+    crossing_traces_ = false;  // the same map as before
+    return false;
+  }
+  ++counters_.trace_crossings;
+  note(ExploreEventKind::crossing_traces, input);
+  return true;
+}
+
+void Explorer::stop_crossing_traces(const ExploreInput& input) {
+  if (!crossing_traces_) return;
+  crossing_traces_ = false;
+  rebuild_map(input);
 }
 
 // After every observation update: is the rest of the plan still passable? Is the goal still
@@ -169,16 +194,19 @@ void Explorer::check_plan(const ExploreInput& input) {
   }
 }
 
-bool Explorer::replan(const ExploreInput& input) {
-  follower_.reset();
+bool Explorer::plan_to_goal(const ExploreInput& input) {
   Eigen::Vector2i target = goal_.cell;
   if (!map_.passable(target.x(), target.y()) &&
       map_.nearest_passable(goal_.cell, params_.explore.goal_shift_radius_m, target)) {
     ++counters_.goal_shifts;
   }
-  if (planner_.plan(map_, cell_of(input.pose), target, plan_) == PlanResult::found ||
-      (state_ == ExploreState::returning && clear_contacts(input) &&
-       planner_.plan(map_, cell_of(input.pose), target, plan_) == PlanResult::found)) {
+  return planner_.plan(map_, cell_of(input.pose), target, plan_) == PlanResult::found;
+}
+
+bool Explorer::replan(const ExploreInput& input) {
+  follower_.reset();
+  if (plan_to_goal(input) || (state_ == ExploreState::returning && clear_contacts(input) && plan_to_goal(input)) ||
+      (start_crossing_traces(input) && plan_to_goal(input))) {
     fresh_look_ = false;  // the robot drives on: the next failure deserves a look of its own
     // A longer plan is a detour the map now demands (a wall where it held free cells): progress
     // is measured along it, not against the shorter plan's best.
@@ -232,7 +260,7 @@ void Explorer::choose_goal(const ExploreInput& input) {
         begin_look(input);
         return;
       }
-      if (clear_contacts(input)) {
+      if (clear_contacts(input) || start_crossing_traces(input)) {
         map_.compute_reachable(cell_of(input.pose));
         continue;
       }
@@ -248,6 +276,7 @@ void Explorer::choose_goal(const ExploreInput& input) {
       return;
     }
     goal_failed(input);
+    map_.compute_reachable(cell_of(input.pose));  // the failure may have rebuilt the map
   }
 }
 
@@ -273,6 +302,7 @@ void Explorer::finish_exploring(const ExploreInput& input, FinishReason reason) 
 
 void Explorer::goal_failed(const ExploreInput& input) {
   plan_.clear();
+  stop_crossing_traces(input);
   if (state_ == ExploreState::returning) {
     // No way back, or no progress on it: a passer-by may stand in the only door, so look and
     // try again, up to goal_failures_before_blacklist failures in all (a stuck return that
@@ -331,11 +361,11 @@ void Explorer::look_step(const ExploreInput& input, ExploreOutput& output) {
 
 void Explorer::finish_look(const ExploreInput& input) {
   fresh_look_ = true;
-  // What the look saw still standing near the robot is no person's trace. And traces that aged
-  // while the robot stood (no update rebuilt the map) are crossed from now on.
+  // What the look saw still standing near the robot is no person's trace. While crossing
+  // traces, the map changes with that, and with the traces that aged while the robot stood.
   counters_.traces_confirmed += traces_.confirm_near(input.grid, position_of(input.pose), input.time_s);
   if (!return_after_look_ && !resume_after_look_) {
-    rebuild_map(input);
+    if (crossing_traces_) rebuild_map(input);
     state_ = ExploreState::choose_goal;
     return;
   }
@@ -366,6 +396,7 @@ void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
     ++counters_.goals_reached;
     note(ExploreEventKind::goal_reached, input);
     memory_.record_visit(goal_.position);
+    stop_crossing_traces(input);
     if (params_.explore.pan_at_goal) {
       begin_look(input);
     } else {

@@ -783,8 +783,9 @@ TEST(Explorer, AReturnBlockedByAPasserByLooksAndTriesAgain) {
 
 // A person walked past the only door while the robot looked out of its room, and left
 // occupied cells across the door's far side that no view from the room can clear. Once they
-// are trace_forget_after_s old, plans cross them, but the safety check does not: the robot
-// stops before them and looks, and goes on if the look saw the person gone.
+// are trace_forget_after_s old, the robot does not conclude that nothing is left: plans cross
+// them, but the safety check does not. The robot stops before them and looks, and goes on if
+// the look saw the person gone.
 struct TraceInTheDoor {
   DoorScene scene;
   ExploreParams params = test_params(100, 60);
@@ -826,14 +827,14 @@ TEST(Explorer, APersonsOldTraceInTheOnlyDoorIsCrossedByPlansNotByTheSafetyCheck)
   // Fresh: the person is there now. The goal beyond fails, nothing else is left: look again.
   EXPECT_EQ(explorer.step(input_at(grid, 1.5, 3.05, 0.0, 1.0, true)).state, ExploreState::look_around);
   EXPECT_EQ(explorer.counters().goal_failures, 1U);
-  EXPECT_EQ(explorer.counters().rebuilds_crossing_traces, 0U);
+  EXPECT_EQ(explorer.counters().trace_crossings, 0U);
   // The look ends 10 s later, far from the door: the trace is crossed, the robot drives.
   const ExploreOutput driving = finish_a_look(explorer, grid, 1.5, 3.05, 11.0);
   ASSERT_EQ(driving.state, ExploreState::drive);
   EXPECT_GT(driving.drive.linear_mps, 0.0);
   EXPECT_TRUE(plan_leads_past_the_door(explorer));
   EXPECT_EQ(explorer.counters().traces_confirmed, 0U);
-  EXPECT_GE(explorer.counters().rebuilds_crossing_traces, 1U);
+  EXPECT_EQ(explorer.counters().trace_crossings, 1U);
   // At the door the cells are still occupied in the grid: the safety check stops the robot
   // before its disc (0.33 m) reaches them (x from 3.2 m).
   double time_s = 11.0;

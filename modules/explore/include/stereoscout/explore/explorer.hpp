@@ -10,7 +10,9 @@
 // worth more than min_goal_value or at time_limit_s, then the robot returns to the start if
 // configured. With pan_at_goal, neither "no goal" nor "no way back" is concluded before a
 // fresh look from where the robot stands (people walking past leave traces that a look
-// clears; see the occupancy grid).
+// clears; see the occupancy grid). Optionally (trace_forget_after_s, off by default), neither
+// "no plan" nor "nothing left" is concluded on a person's old traces either: plans cross them
+// until that goal ends (trace_memory.hpp).
 //
 // Safety, every tick: the emergency stop commands zero velocity in the same call; before any
 // forward motion the next stretch of the plan (and the point just ahead of the robot) is
@@ -82,7 +84,7 @@ struct ExploreCounters {
   std::uint64_t looks_before_giving_up = 0;  // no goal, or no way back: one more look first
   std::uint64_t back_offs = 0;       // backed off after a stall
   std::uint64_t contact_clears = 0;  // contacts forgotten before concluding "explored" or "no way back"
-  std::uint64_t rebuilds_crossing_traces = 0;  // map rebuilds that let plans cross a person's old trace
+  std::uint64_t trace_crossings = 0;   // no plan or nothing left, but with a person's old traces crossed
   std::uint64_t traces_confirmed = 0;  // trace cells still occupied after a look: obstacles since
 };
 
@@ -107,6 +109,9 @@ class Explorer {
   void rebuild(const ExploreInput& input);
   void rebuild_map(const ExploreInput& input);
   bool clear_contacts(const ExploreInput& input);
+  bool start_crossing_traces(const ExploreInput& input);
+  void stop_crossing_traces(const ExploreInput& input);
+  bool plan_to_goal(const ExploreInput& input);
   void check_plan(const ExploreInput& input);
   bool replan(const ExploreInput& input);
   void begin_pursuit(const ExploreInput& input);
@@ -138,6 +143,7 @@ class Explorer {
   ExploreJournal journal_;
   GridView planning_grid_;  // the input grid with the contact cells occupied (last rebuild): the safety check's
   bool planning_on_copy_ = false;  // planning_grid_ is the contact memory's stamped copy
+  bool crossing_traces_ = false;   // the navigation map holds a person's old traces free
   bool stalled_ = false;           // this tick
   PathPlanner planner_;
   PathFollower follower_;
