@@ -796,6 +796,15 @@ struct TraceInTheDoor {
     params.robot_radius_m = 0.33;
   }
   void walk_past(CellState state) { scene.grid.fill(32, 26, 33, 35, state); }
+  // The robot looks, drives off towards the unknown beyond the door, and then, at t = 1 s,
+  // the person walks past the door: the output of that tick.
+  ExploreOutput person_walks_past(Explorer& explorer) {
+    const GridView grid = scene.grid.view();
+    explorer.step(input_at(grid, 1.5, 3.05, 0.0, 0.0, true));
+    EXPECT_EQ(finish_a_look(explorer, grid, 1.5, 3.05, 0.5).state, ExploreState::drive);
+    walk_past(CellState::occupied);
+    return explorer.step(input_at(grid, 1.5, 3.05, 0.0, 1.0, true));
+  }
 };
 
 // Moves the robot along y = 3.05 m (the plan's row) in 5 cm steps, one tick each, while the explorer drives it
@@ -821,11 +830,8 @@ TEST(Explorer, APersonsOldTraceInTheOnlyDoorIsCrossedByPlansNotByTheSafetyCheck)
   TraceInTheDoor door;
   Explorer explorer(door.params);
   const GridView grid = door.scene.grid.view();
-  explorer.step(input_at(grid, 1.5, 3.05, 0.0, 0.0, true));
-  ASSERT_EQ(finish_a_look(explorer, grid, 1.5, 3.05, 0.5).state, ExploreState::drive);
-  door.walk_past(CellState::occupied);
   // Fresh: the person is there now. The goal beyond fails, nothing else is left: look again.
-  EXPECT_EQ(explorer.step(input_at(grid, 1.5, 3.05, 0.0, 1.0, true)).state, ExploreState::look_around);
+  EXPECT_EQ(door.person_walks_past(explorer).state, ExploreState::look_around);
   EXPECT_EQ(explorer.counters().goal_failures, 1U);
   EXPECT_EQ(explorer.counters().trace_crossings, 0U);
   // The look ends 10 s later, far from the door: the trace is crossed, the robot drives.
@@ -860,10 +866,7 @@ TEST(Explorer, ATraceStillThereAfterALookNearItIsAnObstacleAgain) {
   TraceInTheDoor door;
   Explorer explorer(door.params);
   const GridView grid = door.scene.grid.view();
-  explorer.step(input_at(grid, 1.5, 3.05, 0.0, 0.0, true));
-  ASSERT_EQ(finish_a_look(explorer, grid, 1.5, 3.05, 0.5).state, ExploreState::drive);
-  door.walk_past(CellState::occupied);
-  explorer.step(input_at(grid, 1.5, 3.05, 0.0, 1.0, true));
+  door.person_walks_past(explorer);
   ASSERT_EQ(finish_a_look(explorer, grid, 1.5, 3.05, 11.0).state, ExploreState::drive);
   double time_s = 11.0;
   const double stopped_x = drive_until_stopped(explorer, grid, 1.5, time_s);
