@@ -53,6 +53,19 @@ bool TraceMemory::trace(std::size_t i, double time_s) const {
          time_s - static_cast<double>(turned_occupied_s_[i]) >= forget_after_s_;
 }
 
+// An occupied neighbour that is no trace: the cell is part of a standing obstacle, such as a
+// blank wall whose cells grazing rays erased and the next view restored one by one.
+bool TraceMemory::touches_obstacle(const GridView& grid, int x, int y, double time_s) const {
+  for (int dy = -1; dy <= 1; ++dy) {
+    for (int dx = -1; dx <= 1; ++dx) {
+      if ((dx == 0 && dy == 0) || !grid.contains(x + dx, y + dy)) continue;
+      const std::size_t i = grid.index(x + dx, y + dy);
+      if (grid.cells[i] == static_cast<std::uint8_t>(CellState::occupied) && !trace(i, time_s)) return true;
+    }
+  }
+  return false;
+}
+
 GridView TraceMemory::forget_traces(const GridView& grid, double time_s) {
   forgotten_last_ = 0;
   if (forget_after_s_ <= 0.0 || !same_geometry(grid)) return grid;
@@ -60,6 +73,9 @@ GridView TraceMemory::forget_traces(const GridView& grid, double time_s) {
   bool copied = false;
   for (std::size_t i = 0; i < count; ++i) {
     if (!trace(i, time_s) || grid.cells[i] != static_cast<std::uint8_t>(CellState::occupied)) continue;
+    const int x = static_cast<int>(i % static_cast<std::size_t>(grid.width));
+    const int y = static_cast<int>(i / static_cast<std::size_t>(grid.width));
+    if (touches_obstacle(grid, x, y, time_s)) continue;
     if (!copied) {
       std::memcpy(forgotten_.data(), grid.cells, count);
       copied = true;

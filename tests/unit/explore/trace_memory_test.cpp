@@ -58,13 +58,14 @@ TEST(TraceMemory, ObserveDoesNotAllocateAndIsOffWithNoMarginAndNoForgetting) {
   EXPECT_EQ(off.forget_traces(grid.view(), 100.0).cells, grid.view().cells);
 }
 
-TEST(TraceMemory, AnOldTraceIsForgottenForPlanningUntilALookNearItConfirmsIt) {
+TEST(TraceMemory, AnOldTraceAwayFromStandingObstaclesIsForgottenUntilALookConfirmsIt) {
   core::ExploreConfig config;
   config.trace_forget_after_s = 10.0;
   config.trace_confirm_radius_m = 1.0;
   TraceMemory traces(config, 40, 20);
   TestGrid grid(40, 20, CellState::free);
   grid.fill(30, 0, 40, 20, CellState::unknown);
+  grid.fill(10, 10, 21, 11, CellState::occupied);  // a wall
   traces.observe(grid.view(), 0.0);
   grid.set(5, 5, CellState::occupied);    // a person walked here
   grid.set(25, 5, CellState::occupied);   // and here
@@ -90,10 +91,20 @@ TEST(TraceMemory, AnOldTraceIsForgottenForPlanningUntilALookNearItConfirmsIt) {
   EXPECT_EQ(traces.forgotten_last(), 1U);
   EXPECT_EQ(after.at(5, 5), CellState::occupied);
   EXPECT_EQ(after.at(25, 5), CellState::free);
+  // A trace next to a standing obstacle is part of it: a blank wall's cell, erased by grazing
+  // rays and seen again.
+  grid.set(20, 10, CellState::free);
+  traces.observe(grid.view(), 21.0);
+  grid.set(20, 10, CellState::occupied);  // its end erased, then seen again
+  traces.observe(grid.view(), 22.0);
+  const GridView with_wall = traces.forget_traces(grid.view(), 40.0);
+  EXPECT_EQ(traces.forgotten_last(), 1U);
+  EXPECT_EQ(with_wall.at(20, 10), CellState::occupied);
+  EXPECT_EQ(with_wall.at(25, 5), CellState::free);
   // A trace seen free again is no trace any more.
   grid.set(25, 5, CellState::free);
-  traces.observe(grid.view(), 13.0);
-  EXPECT_EQ(traces.forget_traces(grid.view(), 30.0).cells, grid.view().cells);
+  traces.observe(grid.view(), 23.0);
+  EXPECT_EQ(traces.forget_traces(grid.view(), 40.0).cells, grid.view().cells);
 }
 
 }  // namespace

@@ -45,8 +45,9 @@ class TraceMemory {
   double margin_m() const { return margin_m_; }
 
   // `grid` (the grid last observed, or a copy of it with more cells occupied) with its traces
-  // free: a copy in the memory's own buffer, or `grid` itself when there is no trace (or
-  // forgetting is off, or the geometry is not the one observed). Valid until the next call.
+  // free, except those next to an occupied cell that is no trace (8-neighbours): a copy in
+  // the memory's own buffer, or `grid` itself when there is no such trace (or forgetting is
+  // off, or the geometry is not the one observed). Valid until the next call.
   GridView forget_traces(const GridView& grid, double time_s);
   // Trace cells within trace_confirm_radius_m of `centre` that `grid` still holds occupied
   // become obstacles; returns how many.
@@ -57,6 +58,7 @@ class TraceMemory {
 
  private:
   bool trace(std::size_t i, double time_s) const;
+  bool touches_obstacle(const GridView& grid, int x, int y, double time_s) const;
   bool same_geometry(const GridView& grid) const { return grid.width == width_ && grid.height == height_; }
 
   double margin_m_;
