@@ -84,7 +84,7 @@ struct ExploreCounters {
   std::uint64_t looks_before_giving_up = 0;  // no goal, or no way back: one more look first
   std::uint64_t back_offs = 0;       // backed off after a stall
   std::uint64_t contact_clears = 0;  // contacts forgotten before concluding "explored" or "no way back"
-  std::uint64_t trace_crossings = 0;   // no plan or nothing left, but with a person's old traces crossed
+  std::uint64_t trace_crossings = 0;   // plans let cross old traces rather than conclude "no plan" or "nothing left"
   std::uint64_t traces_confirmed = 0;  // trace cells still occupied after a look: obstacles since
 };
 
