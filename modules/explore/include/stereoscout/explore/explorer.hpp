@@ -10,9 +10,9 @@
 // worth more than min_goal_value or at time_limit_s, then the robot returns to the start if
 // configured. With pan_at_goal, neither "no goal" nor "no way back" is concluded before a
 // fresh look from where the robot stands (people walking past leave traces that a look
-// clears; see the occupancy grid). Optionally (trace_forget_after_s, off by default), neither
-// "no plan" nor "nothing left" is concluded on a person's old traces either: plans cross them
-// until that goal ends (trace_memory.hpp).
+// clears; see the occupancy grid). Neither "no plan" nor "nothing left" is concluded on a
+// person's old traces either (trace_forget_after_s): plans cross them until that goal ends
+// (trace_memory.hpp).
 //
 // Safety, every tick: the emergency stop commands zero velocity in the same call; before any
 // forward motion the next stretch of the plan (and the point just ahead of the robot) is

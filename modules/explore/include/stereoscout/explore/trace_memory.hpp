@@ -13,16 +13,16 @@
 // Traces (the person has walked on). The grid clears a person's cells only when a later ray
 // passes through them, and from inside a room the robot does not see the corridor beyond its
 // door: a person who walked past the door while the robot looked out left cells that shut it
-// in (the office). So (optionally, off by default) a cell that turned occupied at least
-// explore.trace_forget_after_s ago is a trace, and where the explorer would otherwise
-// conclude "no plan" or "nothing left", it plans on the grid with the traces free
-// (forget_traces()). The safety check does not: it still stops the robot before the cell, and
-// the look that follows re-observes it. Traces within trace_confirm_radius_m that are still
-// occupied after a look are obstacles from then on (confirm_near()). Not every trace is a
-// person: the grid also first holds free, then occupied, the cells of a blank wall that
-// grazing rays erased; crossing traces always, not only when stuck, led plans through the
-// office's corridor walls (docs/results.md). So a trace next to an occupied cell that is no
-// trace is part of that obstacle, not forgotten.
+// in (the office). So a cell that turned occupied at least explore.trace_forget_after_s ago
+// (0: never) is a trace, and where the explorer would otherwise conclude "no plan" or
+// "nothing left", it plans on the grid with the traces free (forget_traces()). The safety
+// check does not: it still stops the robot before the cell, and the look that follows
+// re-observes it. Traces within trace_confirm_radius_m that are still occupied after a look
+// are obstacles from then on (confirm_near()). Not every trace is a person: the grid also
+// first holds free, then occupied, the cells of a blank wall that grazing rays erased;
+// crossing traces always, not only when stuck, led plans through the office's corridor walls
+// (docs/results.md). So a trace next to an occupied cell that is no trace is part of that
+// obstacle, not forgotten.
 //
 // observe() compares the grid with the one it saw last; it runs after every observation
 // update. All buffers are sized for the largest grid at construction; nothing is allocated

@@ -30,7 +30,7 @@ struct ExploreConfig {
   double safety_check_distance_m = 0.5;
   double fresh_obstacle_margin_m = 0.0;
   double fresh_obstacle_hold_s = 3.0;
-  double trace_forget_after_s = 0.0;
+  double trace_forget_after_s = 10.0;
   double trace_confirm_radius_m = 2.0;
   double stuck_timeout_s = 40.0;
   double goal_time_factor = 3.0;
@@ -74,7 +74,7 @@ inline void describe(ConfigVisitor& v, ExploreConfig& c) {
   v.number("safety_check_distance_m", c.safety_check_distance_m, {0.05, 5.0, "m", "Before every command the next stretch of path this long is checked against occupied cells."});
   v.number("fresh_obstacle_margin_m", c.fresh_obstacle_margin_m, {0.0, 2.0, "m", "The safety check keeps this much more clearance from cells that turned from free to occupied within fresh_obstacle_hold_s (a person walking at 0.5 m/s moves 0.3 m between two updates). 0 = off, the default: measured at 0.3 m it did not reduce contacts with people (docs/results.md); not in the paper."});
   v.number("fresh_obstacle_hold_s", c.fresh_obstacle_hold_s, {0.0, 60.0, "s", "How long a cell that turned from free to occupied counts as fresh for fresh_obstacle_margin_m."});
-  v.number("trace_forget_after_s", c.trace_forget_after_s, {0.0, 3600.0, "s", "A cell that turned from free to occupied this long ago is a trace (a person who walked on, seen from where the robot could not see it go). Before concluding that a goal has no plan or that nothing is left, the explorer lets plans cross traces until that goal is reached or fails; the safety check still stops for them, and a look confirms one as an obstacle if it is still there. A trace next to a standing obstacle is part of it and not crossed. 0 = off, the default: at 10 s it freed the office's robot from an office a walker's trace had shut it in (seed 3: 32.7% -> 60.6%), but three other office and clutter runs lost 2-3 points and contacts rose (docs/results.md); not in the paper."});
+  v.number("trace_forget_after_s", c.trace_forget_after_s, {0.0, 3600.0, "s", "A cell that turned from free to occupied this long ago is a trace (a person who walked on, seen from where the robot could not see it go). Before concluding that a goal has no plan or that nothing is left, the explorer lets plans cross traces until that goal is reached or fails; the safety check still stops for them, and a look confirms one as an obstacle if it is still there. A trace next to a standing obstacle is part of it and not crossed. 0 = off. On the office (four seeds) it raised coverage from 33.3% to 49.0% on the mean, with 11 contacts against 8 (docs/results.md); not in the paper."});
   v.number("trace_confirm_radius_m", c.trace_confirm_radius_m, {0.0, 20.0, "m", "After a look, traces within this distance that the grid still holds occupied are obstacles, no longer crossed by plans."});
   v.number("stuck_timeout_s", c.stuck_timeout_s, {1.0, 100000.0, "s", "A goal fails when the robot got no closer to it along its plan (the plan's remaining length) for this long."});
   v.number("goal_time_factor", c.goal_time_factor, {0.0, 1000.0, "", "A goal (or the way back) also fails when pursued for longer than stuck_timeout_s plus this many times the driving time of its longest plan at robot.max_speed_mps. Progress is measured along the plan and a longer plan (a detour around a wall the map had held free) restarts it, so a robot alternating between two routes would otherwise never fail. 0: no limit. Not in the paper."});
