@@ -807,8 +807,8 @@ struct TraceInTheDoor {
   }
 };
 
-// Moves the robot along y = 3.05 m (the plan's row) in 5 cm steps, one tick each, while the explorer drives it
-// forward; returns the x where it stopped (time_s: that tick's time).
+// Moves the robot along y = 3.05 m (the plan's row) in 5 cm steps, one tick each, while the
+// explorer drives it forward; returns the x where it stopped (time_s: that tick's time).
 double drive_until_stopped(Explorer& explorer, const GridView& grid, double x, double& time_s) {
   for (; x < 4.0; x += 0.05) {
     time_s += 0.5;
