@@ -182,6 +182,7 @@ void Explorer::check_plan(const ExploreInput& input) {
     ++counters_.goals_abandoned;
     note(ExploreEventKind::goal_abandoned, input);
     plan_.clear();
+    stop_crossing_traces(input);
     state_ = ExploreState::choose_goal;
     return;
   }

@@ -877,6 +877,24 @@ TEST(Explorer, ATraceStillThereAfterALookNearItIsAnObstacleAgain) {
   EXPECT_FALSE(plan_leads_past_the_door(explorer));
 }
 
+// Crossing traces ends with the goal it was for, also when the goal is abandoned (seen on the
+// way): the next goals are chosen on the map with the traces, and crossing them again is a
+// new last resort, counted again.
+TEST(Explorer, CrossingTracesEndsWithAnAbandonedGoal) {
+  TraceInTheDoor door;
+  Explorer explorer(door.params);
+  const GridView grid = door.scene.grid.view();
+  door.person_walks_past(explorer);
+  ASSERT_EQ(finish_a_look(explorer, grid, 1.5, 3.05, 11.0).state, ExploreState::drive);
+  ASSERT_EQ(explorer.counters().trace_crossings, 1U);
+  door.scene.grid.fill(80, 1, 99, 59, CellState::free);  // all of it seen: nothing left
+  explorer.step(input_at(grid, 1.5, 3.05, 0.0, 12.0, true));
+  EXPECT_EQ(explorer.counters().goals_abandoned, 1U);
+  finish_a_look(explorer, grid, 1.5, 3.05, 13.0);
+  EXPECT_EQ(explorer.counters().trace_crossings, 2U);
+  EXPECT_EQ(explorer.finish_reason(), FinishReason::explored);
+}
+
 TEST(Explorer, StopsExploringAtTheTimeLimit) {
   Corridor scene;
   ExploreParams params = no_look_params(100, 60);
