@@ -237,6 +237,7 @@ void write_counters(report::JsonWriter& json, const stack::Stack& stack) {
       .unsigned_integer("contact_clears", e.contact_clears)
       .unsigned_integer("trace_crossings", e.trace_crossings)
       .unsigned_integer("traces_confirmed", e.traces_confirmed)
+      .unsigned_integer("traces_seen_standing", e.traces_seen_standing)
       .unsigned_integer("looks", e.looks)
       .unsigned_integer("events_recorded", stack.explorer().journal().recorded())
       .unsigned_integer("events_dropped", stack.explorer().journal().dropped())

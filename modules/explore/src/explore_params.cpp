@@ -1,5 +1,8 @@
 #include "stereoscout/explore/grid_view.hpp"
 
+#include <cmath>
+#include <limits>
+
 #include "stereoscout/core/geometry.hpp"
 
 namespace stereoscout::explore {
@@ -12,6 +15,17 @@ ExploreParams ExploreParams::from_config(const core::ExploreConfig& explore, con
   params.max_speed_mps = robot.max_speed_mps;
   params.max_turn_rate_rad_s = core::degrees_to_radians(robot.max_turn_rate_deg_s);
   params.has_pan_unit = camera.has_pan_unit;
+  params.camera_forward_m = camera.mount_x_m;
+  params.camera_half_fov_rad = std::atan(0.5 * camera.width_px / camera.focal_px);
+  // The lowest image row looks down by half the vertical field of view plus the tilt.
+  const double lowest_ray_rad =
+      std::atan(0.5 * camera.height_px / camera.focal_px) + core::degrees_to_radians(camera.mount_tilt_deg);
+  constexpr double kStraightDownRad = 0.5 * core::kPi;
+  if (lowest_ray_rad <= 0.0) {
+    params.camera_near_m = std::numeric_limits<double>::infinity();  // tilted up: it never sees the floor
+  } else {
+    params.camera_near_m = lowest_ray_rad >= kStraightDownRad ? 0.0 : camera.mount_height_m / std::tan(lowest_ray_rad);
+  }
   params.max_width = max_width;
   params.max_height = max_height;
   return params;

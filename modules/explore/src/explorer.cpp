@@ -23,6 +23,19 @@ constexpr int kGoalAttemptsPerTick = 4;
 
 Eigen::Vector2d position_of(const core::Pose2& pose) { return {pose.x, pose.y}; }
 
+// The part of the camera's view at this update in which a cell that stays occupied is seen
+// standing (trace_memory.hpp).
+CameraWedge camera_wedge(const ExploreParams& params, const ExploreInput& input) {
+  CameraWedge view;
+  view.position = position_of(input.pose) +
+                  params.camera_forward_m * Eigen::Vector2d(std::cos(input.pose.theta), std::sin(input.pose.theta));
+  view.heading_rad = input.pose.theta + input.pan_rad;
+  view.half_fov_rad = params.camera_half_fov_rad;
+  view.near_m = params.camera_near_m;
+  view.far_m = params.explore.trace_confirm_radius_m;
+  return view;
+}
+
 }  // namespace
 
 const char* to_string(ExploreState state) {
@@ -115,7 +128,9 @@ void Explorer::start(const ExploreInput& input) {
 
 void Explorer::rebuild(const ExploreInput& input) {
   rebuild_needed_ = false;
-  traces_.observe(input.grid, input.time_s);
+  const CameraWedge view = camera_wedge(params_, input);
+  traces_.observe(input.grid, input.time_s, &view);
+  counters_.traces_seen_standing = traces_.seen_standing();
   rebuild_map(input);
   if (state_ == ExploreState::drive || state_ == ExploreState::returning) check_plan(input);
 }

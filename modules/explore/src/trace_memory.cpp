@@ -4,10 +4,27 @@
 #include <cstring>
 #include <limits>
 
+#include "stereoscout/core/geometry.hpp"
+
 namespace stereoscout::explore {
 namespace {
 
 constexpr float kNever = -std::numeric_limits<float>::infinity();
+
+// No occupied cell between the centres of cells a and b (both excepted): the camera at a
+// would see b.
+bool in_sight(const GridView& grid, const Eigen::Vector2i& a, const Eigen::Vector2i& b) {
+  const Eigen::Vector2d span = (b - a).cast<double>();
+  const double length_cells = span.norm();
+  if (length_cells == 0.0) return true;
+  bool clear = true;
+  march_cells(a.x(), a.y(), span / length_cells, length_cells, [&](int x, int y) {
+    if (x == b.x() && y == b.y()) return false;
+    clear = !(grid.contains(x, y) && grid.at(x, y) == CellState::occupied);
+    return clear;
+  });
+  return clear;
+}
 
 }  // namespace
 
@@ -19,9 +36,18 @@ TraceMemory::TraceMemory(const core::ExploreConfig& config, int max_width, int m
       previous_(static_cast<std::size_t>(max_width) * static_cast<std::size_t>(max_height),
                 static_cast<std::uint8_t>(CellState::unknown)),
       turned_occupied_s_(previous_.size(), kNever),
+      views_(config.trace_forget_after_s > 0.0 && config.trace_view_updates > 0 ? previous_.size() : 0U, 0),
+      view_updates_(config.trace_view_updates),
       forgotten_(forget_after_s_ > 0.0 ? previous_.size() : 0U) {}
 
-void TraceMemory::observe(const GridView& grid, double time_s) {
+bool CameraWedge::contains(const Eigen::Vector2d& point) const {
+  const Eigen::Vector2d offset = point - position;
+  const double range = offset.norm();
+  if (range < near_m || range > far_m) return false;
+  return std::abs(core::wrap_angle(std::atan2(offset.y(), offset.x()) - heading_rad)) <= half_fov_rad;
+}
+
+void TraceMemory::observe(const GridView& grid, double time_s, const CameraWedge* view) {
   const std::size_t count = static_cast<std::size_t>(grid.width) * static_cast<std::size_t>(grid.height);
   if (count > previous_.size() || (margin_m_ <= 0.0 && forget_after_s_ <= 0.0)) return;
   if (!same_geometry(grid)) {
@@ -36,9 +62,33 @@ void TraceMemory::observe(const GridView& grid, double time_s) {
   }
   const auto free = static_cast<std::uint8_t>(CellState::free);
   const auto occupied = static_cast<std::uint8_t>(CellState::occupied);
+  const bool counting = !views_.empty();
   for (std::size_t i = 0; i < count; ++i) {
-    if (previous_[i] == free && grid.cells[i] == occupied) turned_occupied_s_[i] = static_cast<float>(time_s);
+    if (previous_[i] == free && grid.cells[i] == occupied) {
+      turned_occupied_s_[i] = static_cast<float>(time_s);
+      if (counting) views_[i] = 0;
+    }
     previous_[i] = grid.cells[i];
+  }
+  if (counting && view != nullptr) count_views(grid, *view);
+}
+
+// Cells that turned occupied, in the wedge and in sight (no occupied cell on the way there):
+// one more update seen standing; at view_updates_ they are no traces any more.
+void TraceMemory::count_views(const GridView& grid, const CameraWedge& view) {
+  const int reach = static_cast<int>(std::ceil(view.far_m / grid.resolution_m));
+  const Eigen::Vector2i camera = grid.cell_of(view.position);
+  const auto occupied = static_cast<std::uint8_t>(CellState::occupied);
+  for (int y = camera.y() - reach; y <= camera.y() + reach; ++y) {
+    for (int x = camera.x() - reach; x <= camera.x() + reach; ++x) {
+      if (!grid.contains(x, y)) continue;
+      const std::size_t i = grid.index(x, y);
+      if (grid.cells[i] != occupied || turned_occupied_s_[i] == kNever || !view.contains(grid.center(x, y))) continue;
+      if (!in_sight(grid, camera, {x, y})) continue;
+      if (++views_[i] < view_updates_) continue;
+      turned_occupied_s_[i] = kNever;
+      ++seen_standing_;
+    }
   }
 }
 

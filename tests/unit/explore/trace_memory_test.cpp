@@ -107,5 +107,44 @@ TEST(TraceMemory, AnOldTraceAwayFromStandingObstaclesIsForgottenUntilALookConfir
   EXPECT_EQ(traces.forget_traces(grid.view(), 40.0).cells, grid.view().cells);
 }
 
+TEST(TraceMemory, ACellSeenStandingInViewForEnoughUpdatesIsNoTrace) {
+  core::ExploreConfig config;
+  config.trace_forget_after_s = 10.0;
+  config.trace_view_updates = 3;
+  TraceMemory traces(config, 60, 30);
+  TestGrid grid(60, 30, CellState::free);
+  traces.observe(grid.view(), 0.0);
+  grid.set(20, 5, CellState::occupied);  // 1.5 m straight ahead of the camera
+  grid.set(22, 5, CellState::occupied);  // behind it
+  grid.set(10, 20, CellState::occupied);  // outside the field of view
+  grid.set(12, 3, CellState::occupied);  // nearer than the floor the camera sees
+  grid.set(30, 5, CellState::occupied);  // farther than the wedge reaches
+  CameraWedge view;
+  view.position = Eigen::Vector2d(0.55, 0.55);
+  view.half_fov_rad = 0.6;
+  view.near_m = 1.0;
+  view.far_m = 2.0;
+  traces.observe(grid.view(), 1.0, &view);
+  traces.observe(grid.view(), 2.0, &view);
+  EXPECT_EQ(traces.seen_standing(), 0U);
+  const core::AllocationScope scope;
+  traces.observe(grid.view(), 3.0, &view);
+  EXPECT_EQ(scope.allocations(), 0U);
+  EXPECT_EQ(traces.seen_standing(), 1U);
+  const GridView forgotten = traces.forget_traces(grid.view(), 20.0);
+  EXPECT_EQ(traces.forgotten_last(), 4U);
+  EXPECT_EQ(forgotten.at(20, 5), CellState::occupied);
+  EXPECT_EQ(forgotten.at(22, 5), CellState::free);
+  EXPECT_EQ(forgotten.at(10, 20), CellState::free);
+  EXPECT_EQ(forgotten.at(12, 3), CellState::free);
+  EXPECT_EQ(forgotten.at(30, 5), CellState::free);
+  // Cleared and hit again (a blank wall's cell erased by a grazing ray): counted anew.
+  grid.set(20, 5, CellState::free);
+  traces.observe(grid.view(), 21.0, &view);
+  grid.set(20, 5, CellState::occupied);
+  traces.observe(grid.view(), 22.0, &view);
+  EXPECT_EQ(traces.forget_traces(grid.view(), 40.0).at(20, 5), CellState::free);
+}
+
 }  // namespace
 }  // namespace stereoscout::explore

@@ -86,6 +86,7 @@ struct ExploreCounters {
   std::uint64_t contact_clears = 0;  // contacts forgotten before concluding "explored" or "no way back"
   std::uint64_t trace_crossings = 0;   // plans let cross old traces rather than conclude "no plan" or "nothing left"
   std::uint64_t traces_confirmed = 0;  // trace cells still occupied after a look: obstacles since
+  std::uint64_t traces_seen_standing = 0;  // cells seen occupied in view for trace_view_updates: never traces
 };
 
 class Explorer {

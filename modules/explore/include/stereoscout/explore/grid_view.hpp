@@ -70,6 +70,12 @@ struct ExploreParams {
   double max_speed_mps = 0.12;
   double max_turn_rate_rad_s = 0.0;
   bool has_pan_unit = true;
+  // Where the camera sees: its distance ahead of the robot's centre, half its horizontal field
+  // of view, and the range from which it sees the floor (nearer, a person's cell may be out of
+  // the other camera's view or the matcher's range, and no ray would clear it).
+  double camera_forward_m = 0.1;
+  double camera_half_fov_rad = 0.675;
+  double camera_near_m = 1.0;
   int max_width = 700;   // grid size the buffers are allocated for
   int max_height = 700;
 

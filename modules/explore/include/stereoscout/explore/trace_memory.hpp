@@ -22,7 +22,11 @@
 // first holds free, then occupied, the cells of a blank wall that grazing rays erased;
 // crossing traces always, not only when stuck, led plans through the office's corridor walls
 // (docs/results.md). So a trace next to an occupied cell that is no trace is part of that
-// obstacle, not forgotten.
+// obstacle, not forgotten. And a cell that stayed occupied through trace_view_updates
+// observation updates in the camera's view is a standing obstacle, never a trace: when a
+// person has gone, the rays through their cell clear it within a few updates; a blank wall's
+// restored cell stays (without this, plans that crossed traces ran back through the office
+// wall the robot had just seen, and in clutter between two blocked routes).
 //
 // observe() compares the grid with the one it saw last; it runs after every observation
 // update. All buffers are sized for the largest grid at construction; nothing is allocated
@@ -36,11 +40,24 @@
 
 namespace stereoscout::explore {
 
+// Where the camera looked at an observation update, and the part of its view in which a
+// cell that stays occupied counts as seen standing (ExploreParams' camera fields).
+struct CameraWedge {
+  Eigen::Vector2d position = Eigen::Vector2d::Zero();
+  double heading_rad = 0.0;
+  double half_fov_rad = 0.0;
+  double near_m = 0.0;
+  double far_m = 0.0;
+  bool contains(const Eigen::Vector2d& point) const;
+};
+
 class TraceMemory {
  public:
   TraceMemory(const core::ExploreConfig& config, int max_width, int max_height);
 
-  void observe(const GridView& grid, double time_s);
+  // With `view`, also counts the updates in which each cell that turned occupied stood in
+  // sight within it (trace_view_updates).
+  void observe(const GridView& grid, double time_s, const CameraWedge* view = nullptr);
   // True when cell (x, y) of the grid last observed turned from free to occupied within
   // fresh_obstacle_hold_s before time_s.
   bool fresh(const GridView& grid, int x, int y, double time_s) const;
@@ -56,11 +73,13 @@ class TraceMemory {
   std::size_t confirm_near(const GridView& grid, const Eigen::Vector2d& centre, double time_s);
 
   std::size_t forgotten_last() const { return forgotten_last_; }  // cells freed by the last forget_traces()
-  std::uint64_t confirmed() const { return confirmed_; }
+  std::uint64_t confirmed() const { return confirmed_; }  // by looks
+  std::uint64_t seen_standing() const { return seen_standing_; }  // by trace_view_updates
 
  private:
   bool trace(std::size_t i, double time_s) const;
   bool touches_obstacle(const GridView& grid, int x, int y, double time_s) const;
+  void count_views(const GridView& grid, const CameraWedge& view);
   bool same_geometry(const GridView& grid) const { return grid.width == width_ && grid.height == height_; }
 
   double margin_m_;
@@ -71,9 +90,12 @@ class TraceMemory {
   int height_ = 0;
   std::vector<std::uint8_t> previous_;  // CellState of the last grid observed
   std::vector<float> turned_occupied_s_;  // when the cell last turned from free to occupied
+  std::vector<std::uint16_t> views_;  // updates in view since, while occupied
+  int view_updates_ = 0;
   std::vector<std::uint8_t> forgotten_;  // forget_traces()'s copy
   std::size_t forgotten_last_ = 0;
   std::uint64_t confirmed_ = 0;
+  std::uint64_t seen_standing_ = 0;
 };
 
 }  // namespace stereoscout::explore
