@@ -153,9 +153,9 @@ void Explorer::rebuild_map(const ExploreInput& input) {
 
 // Contact cells lie where the pose estimate put the robot's rim, and a door whose jamb the robot
 // touched (a contact ahead, another backing out) can be closed by them for contact_hold_s.
-// So neither "no plan" nor "nothing left" nor "no way back" is concluded on them: they are
-// forgotten and the map rebuilt first. True when there were any. A contact that was real is
-// made again by the next stall, and a goal behind it fails on stuck_timeout_s as before.
+// So neither "nothing left" nor "no way back" is concluded on them: they are forgotten and the
+// map rebuilt first. True when there were any. A contact that was real is made again by the
+// next stall, and a goal behind it fails on stuck_timeout_s as before.
 bool Explorer::clear_contacts(const ExploreInput& input) {
   if (contacts_.clear() == 0) return false;
   ++counters_.contact_clears;
@@ -222,7 +222,7 @@ bool Explorer::plan_to_goal(const ExploreInput& input) {
 
 bool Explorer::replan(const ExploreInput& input) {
   follower_.reset();
-  if (plan_to_goal(input) || (clear_contacts(input) && plan_to_goal(input)) ||
+  if (plan_to_goal(input) || (state_ == ExploreState::returning && clear_contacts(input) && plan_to_goal(input)) ||
       (start_crossing_traces(input) && plan_to_goal(input))) {
     fresh_look_ = false;  // the robot drives on: the next failure deserves a look of its own
     // A longer plan is a detour the map now demands (a wall where it held free cells): progress
