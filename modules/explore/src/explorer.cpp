@@ -145,8 +145,8 @@ void Explorer::rebuild_map(const ExploreInput& input) {
   planning_on_copy_ = planning_grid_.cells != input.grid.cells;
   // While crossing traces, plans cross a person's old traces; the safety check (on
   // planning_grid_) never does.
-  const GridView navigation_grid =
-      crossing_traces_ ? traces_.forget_traces(planning_grid_, input.time_s) : planning_grid_;
+  GridView navigation_grid = crossing_traces_ ? traces_.forget_traces(planning_grid_, input.time_s) : planning_grid_;
+  if (params_.explore.remembered_obstacle_cost > 0.0) navigation_grid.seen_standing = traces_.standing_cells();
   map_.rebuild(navigation_grid, position_of(input.pose), extra);
   ++counters_.map_rebuilds;
 }

@@ -227,7 +227,11 @@ void NavigationMap::classify() {
       traversability_[i] = static_cast<std::uint8_t>(kind);
       const double closeness = std::clamp((preferred - clearance) / (preferred - lethal), 0.0, 1.0);
       const double unknown_cost = state == CellState::unknown ? params_.explore.unknown_cell_cost : 0.0;
-      penalty_[i] = static_cast<float>(1.0 + params_.explore.obstacle_cost_weight * closeness + unknown_cost);
+      const double remembered_cost = state != CellState::occupied && grid_.was_seen_standing(x, y)
+                                         ? params_.explore.remembered_obstacle_cost
+                                         : 0.0;
+      penalty_[i] =
+          static_cast<float>(1.0 + params_.explore.obstacle_cost_weight * closeness + unknown_cost + remembered_cost);
     }
   }
 }

@@ -1,5 +1,6 @@
 #include "stereoscout/explore/trace_memory.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -36,7 +37,8 @@ TraceMemory::TraceMemory(const core::ExploreConfig& config, int max_width, int m
       previous_(static_cast<std::size_t>(max_width) * static_cast<std::size_t>(max_height),
                 static_cast<std::uint8_t>(CellState::unknown)),
       turned_occupied_s_(previous_.size(), kNever),
-      views_(config.trace_forget_after_s > 0.0 && config.trace_view_updates > 0 ? previous_.size() : 0U, 0),
+      views_(config.trace_view_updates > 0 ? previous_.size() : 0U, 0),
+      standing_(views_.size(), 0),
       view_updates_(config.trace_view_updates),
       forgotten_(forget_after_s_ > 0.0 ? previous_.size() : 0U) {}
 
@@ -49,7 +51,8 @@ bool CameraWedge::contains(const Eigen::Vector2d& point) const {
 
 void TraceMemory::observe(const GridView& grid, double time_s, const CameraWedge* view) {
   const std::size_t count = static_cast<std::size_t>(grid.width) * static_cast<std::size_t>(grid.height);
-  if (count > previous_.size() || (margin_m_ <= 0.0 && forget_after_s_ <= 0.0)) return;
+  const bool counting = !views_.empty();
+  if (count > previous_.size() || (margin_m_ <= 0.0 && forget_after_s_ <= 0.0 && !counting)) return;
   if (!same_geometry(grid)) {
     // A new grid geometry: nothing to compare with; this grid is the reference.
     width_ = grid.width;
@@ -58,14 +61,17 @@ void TraceMemory::observe(const GridView& grid, double time_s, const CameraWedge
       previous_[i] = grid.cells[i];
       turned_occupied_s_[i] = kNever;
     }
+    if (counting) {
+      std::fill(views_.begin(), views_.end(), 0);
+      std::fill(standing_.begin(), standing_.end(), 0);
+    }
     return;
   }
   const auto free = static_cast<std::uint8_t>(CellState::free);
   const auto occupied = static_cast<std::uint8_t>(CellState::occupied);
-  const bool counting = !views_.empty();
   for (std::size_t i = 0; i < count; ++i) {
-    if (previous_[i] == free && grid.cells[i] == occupied) {
-      turned_occupied_s_[i] = static_cast<float>(time_s);
+    if (previous_[i] != occupied && grid.cells[i] == occupied) {
+      if (previous_[i] == free) turned_occupied_s_[i] = static_cast<float>(time_s);
       if (counting) views_[i] = 0;
     }
     previous_[i] = grid.cells[i];
@@ -73,8 +79,8 @@ void TraceMemory::observe(const GridView& grid, double time_s, const CameraWedge
   if (counting && view != nullptr) count_views(grid, *view);
 }
 
-// Cells that turned occupied, in the wedge and in sight (no occupied cell on the way there):
-// one more update seen standing; at view_updates_ they are no traces any more.
+// Occupied cells in the wedge and in sight (no occupied cell on the way there): one more
+// update seen standing; at view_updates_ they are standing obstacles, no traces.
 void TraceMemory::count_views(const GridView& grid, const CameraWedge& view) {
   const int reach = static_cast<int>(std::ceil(view.far_m / grid.resolution_m));
   const Eigen::Vector2i camera = grid.cell_of(view.position);
@@ -83,10 +89,11 @@ void TraceMemory::count_views(const GridView& grid, const CameraWedge& view) {
     for (int x = camera.x() - reach; x <= camera.x() + reach; ++x) {
       if (!grid.contains(x, y)) continue;
       const std::size_t i = grid.index(x, y);
-      if (grid.cells[i] != occupied || turned_occupied_s_[i] == kNever || !view.contains(grid.center(x, y))) continue;
+      if (grid.cells[i] != occupied || views_[i] >= view_updates_ || !view.contains(grid.center(x, y))) continue;
       if (!in_sight(grid, camera, {x, y})) continue;
       if (++views_[i] < view_updates_) continue;
       turned_occupied_s_[i] = kNever;
+      standing_[i] = 1;
       ++seen_standing_;
     }
   }

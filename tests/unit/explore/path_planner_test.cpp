@@ -128,6 +128,43 @@ TEST(PathPlanner, StraightLineInOpenSpaceAndKeepsAwayFromObstacles) {
   }
 }
 
+// A wall across the room with a door (rows 5-14) and a gap (rows 25-34) where the grid now
+// holds free the cells the explorer saw standing: a blank wall erased by grazing rays. The
+// plan takes the gap when remembering is off, the door (a detour) when it costs.
+TEST(PathPlanner, PlansTakeTheDoorRatherThanAGapThroughAWallSeenStanding) {
+  ExploreParams params = test_params(60, 40);
+  NavigationMap map(params);
+  PathPlanner planner(params);
+  Plan plan(4096);
+  TestGrid grid(60, 40, CellState::free);
+  grid.walls();
+  grid.fill(30, 15, 31, 25, CellState::occupied);
+  grid.fill(30, 35, 31, 40, CellState::occupied);
+  grid.fill(30, 0, 31, 5, CellState::occupied);
+  std::vector<std::uint8_t> standing(60 * 40, 0);
+  for (int y = 25; y < 35; ++y) standing[static_cast<std::size_t>(y * 60 + 30)] = 1;
+  GridView view = grid.view();
+  view.seen_standing = standing.data();
+  const Eigen::Vector2d robot(1.0, 2.0);
+  const auto crosses_the_wall_at = [&plan]() {
+    for (const Eigen::Vector2i& cell : plan.cells) {
+      if (cell.x() == 30) return cell.y();
+    }
+    return -1;
+  };
+  ASSERT_TRUE(map.rebuild(view, robot, robot));
+  ASSERT_EQ(planner.plan(map, {20, 30}, {40, 30}, plan), PlanResult::found);
+  EXPECT_GE(crosses_the_wall_at(), 25);  // off by default: through the gap
+
+  params.explore.remembered_obstacle_cost = 100.0;
+  NavigationMap remembering(params);
+  ASSERT_TRUE(remembering.rebuild(view, robot, robot));
+  ASSERT_EQ(planner.plan(remembering, {20, 30}, {40, 30}, plan), PlanResult::found);
+  EXPECT_LT(crosses_the_wall_at(), 15);  // through the door
+  // Where the grid holds the cell occupied, it is an obstacle as before, not a cost.
+  EXPECT_FALSE(remembering.passable(30, 20));
+}
+
 TEST(PathPlanner, ReportsBlockedGoalsFullPlansAndNoPath) {
   const ExploreParams params = test_params(60, 40);
   NavigationMap map(params);

@@ -1,6 +1,8 @@
 // Cells that turn from free to occupied (a person walking into view) are fresh for
 // fresh_obstacle_hold_s, and traces that planning crosses after trace_forget_after_s; a first
 // sighting (unknown to occupied) is neither.
+#include <algorithm>
+
 #include <gtest/gtest.h>
 
 #include "stereoscout/core/allocation_counter.hpp"
@@ -36,7 +38,7 @@ TEST(TraceMemory, FreeToOccupiedIsFreshForTheHoldTimeAndFirstSightingsAreNot) {
   EXPECT_TRUE(fresh.fresh(grid.view(), 5, 5, 23.5));
 }
 
-TEST(TraceMemory, ObserveDoesNotAllocateAndIsOffWithNoMarginAndNoForgetting) {
+TEST(TraceMemory, ObserveDoesNotAllocateAndIsOffWithNoMarginNoForgettingAndNoViewCounting) {
   core::ExploreConfig config;
   config.fresh_obstacle_margin_m = 0.3;
   TraceMemory fresh(config, 50, 50);
@@ -50,6 +52,7 @@ TEST(TraceMemory, ObserveDoesNotAllocateAndIsOffWithNoMarginAndNoForgetting) {
 
   config.fresh_obstacle_margin_m = 0.0;
   config.trace_forget_after_s = 0.0;
+  config.trace_view_updates = 0;
   TraceMemory off(config, 50, 50);
   off.observe(grid.view(), 0.0);
   grid.set(20, 20, CellState::occupied);
@@ -138,12 +141,23 @@ TEST(TraceMemory, ACellSeenStandingInViewForEnoughUpdatesIsNoTrace) {
   EXPECT_EQ(forgotten.at(10, 20), CellState::free);
   EXPECT_EQ(forgotten.at(12, 3), CellState::free);
   EXPECT_EQ(forgotten.at(30, 5), CellState::free);
+  // Remembered as standing, for plans (GridView::seen_standing): that cell only.
+  ASSERT_NE(traces.standing_cells(), nullptr);
+  EXPECT_EQ(traces.standing_cells()[grid.view().index(20, 5)], 1);
+  EXPECT_EQ(std::count(traces.standing_cells(), traces.standing_cells() + 60 * 30, 1), 1);
   // Cleared and hit again (a blank wall's cell erased by a grazing ray): counted anew.
   grid.set(20, 5, CellState::free);
   traces.observe(grid.view(), 21.0, &view);
   grid.set(20, 5, CellState::occupied);
   traces.observe(grid.view(), 22.0, &view);
   EXPECT_EQ(traces.forget_traces(grid.view(), 40.0).at(20, 5), CellState::free);
+  // A first sighting (unknown to occupied) in view is seen standing too: a wall seen for the
+  // first time, which grazing rays may erase later.
+  grid.set(18, 8, CellState::unknown);
+  traces.observe(grid.view(), 41.0, &view);
+  grid.set(18, 8, CellState::occupied);
+  for (double t = 42.0; t < 44.5; t += 1.0) traces.observe(grid.view(), t, &view);
+  EXPECT_EQ(traces.standing_cells()[grid.view().index(18, 8)], 1);
 }
 
 }  // namespace

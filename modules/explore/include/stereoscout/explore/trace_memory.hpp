@@ -75,6 +75,9 @@ class TraceMemory {
   std::size_t forgotten_last() const { return forgotten_last_; }  // cells freed by the last forget_traces()
   std::uint64_t confirmed() const { return confirmed_; }  // by looks
   std::uint64_t seen_standing() const { return seen_standing_; }  // by trace_view_updates
+  // Nonzero per cell (the observed grid's layout) where a cell was ever seen standing; for
+  // GridView::seen_standing. Null when view counting is off.
+  const std::uint8_t* standing_cells() const { return standing_.empty() ? nullptr : standing_.data(); }
 
  private:
   bool trace(std::size_t i, double time_s) const;
@@ -90,7 +93,8 @@ class TraceMemory {
   int height_ = 0;
   std::vector<std::uint8_t> previous_;  // CellState of the last grid observed
   std::vector<float> turned_occupied_s_;  // when the cell last turned from free to occupied
-  std::vector<std::uint16_t> views_;  // updates in view since, while occupied
+  std::vector<std::uint16_t> views_;  // updates in view since it last turned occupied, while occupied
+  std::vector<std::uint8_t> standing_;  // seen standing at some time
   int view_updates_ = 0;
   std::vector<std::uint8_t> forgotten_;  // forget_traces()'s copy
   std::size_t forgotten_last_ = 0;
