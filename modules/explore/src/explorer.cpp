@@ -203,12 +203,25 @@ void Explorer::check_plan(const ExploreInput& input) {
   }
   for (std::size_t k = follower_.progress() + 1; k < plan_.cells.size(); ++k) {
     if (!map_.passable(plan_.cells[k].x(), plan_.cells[k].y())) {
+      if (blocked_by_passers_by(input, plan_.cells[k])) {
+        ++counters_.plans_kept_for_walkers;
+        return;
+      }
       ++counters_.replans;
       note(ExploreEventKind::plan_blocked, input);
       if (!replan(input)) goal_failed(input);
       return;
     }
   }
+}
+
+// A person crossing the plan ahead leaves cells that block it for a few updates; replanning
+// sent the robot on a detour, and the next crossing on another (wait_for_walkers). Kept when
+// the cell is known and only such recent cells, not seen standing, block it.
+bool Explorer::blocked_by_passers_by(const ExploreInput& input, const Eigen::Vector2i& cell) {
+  if (!params_.explore.wait_for_walkers || planning_grid_.at(cell.x(), cell.y()) == CellState::unknown) return false;
+  return traces_.only_passers_by_near(planning_grid_, cell.x(), cell.y(),
+                                      params_.lethal_distance_m(planning_grid_.resolution_m), input.time_s);
 }
 
 bool Explorer::plan_to_goal(const ExploreInput& input) {

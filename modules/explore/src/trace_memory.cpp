@@ -104,6 +104,25 @@ bool TraceMemory::fresh(const GridView& grid, int x, int y, double time_s) const
   return time_s - static_cast<double>(turned_occupied_s_[grid.index(x, y)]) <= hold_s_;
 }
 
+bool TraceMemory::only_passers_by_near(const GridView& grid, int x, int y, double radius_m, double time_s) const {
+  if (forget_after_s_ <= 0.0 || !same_geometry(grid)) return false;
+  const int reach = static_cast<int>(std::ceil(radius_m / grid.resolution_m));
+  const auto occupied = static_cast<std::uint8_t>(CellState::occupied);
+  bool any = false;
+  for (int cy = y - reach; cy <= y + reach; ++cy) {
+    for (int cx = x - reach; cx <= x + reach; ++cx) {
+      if (!grid.contains(cx, cy) || grid.cells[grid.index(cx, cy)] != occupied) continue;
+      if ((grid.center(cx, cy) - grid.center(x, y)).norm() >= radius_m) continue;
+      const std::size_t i = grid.index(cx, cy);
+      const bool passer_by = previous_[i] == occupied && turned_occupied_s_[i] != kNever &&
+                             time_s - static_cast<double>(turned_occupied_s_[i]) < forget_after_s_;
+      if (!passer_by) return false;
+      any = true;
+    }
+  }
+  return any;
+}
+
 // Occupied when last observed (a cell seen free again is no trace), and turned so long ago.
 bool TraceMemory::trace(std::size_t i, double time_s) const {
   return previous_[i] == static_cast<std::uint8_t>(CellState::occupied) && turned_occupied_s_[i] != kNever &&

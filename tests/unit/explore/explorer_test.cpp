@@ -76,6 +76,35 @@ TEST(Explorer, ReplansWhenAnObstacleAppearsOnThePath) {
   }
 }
 
+// A person crosses the plan 3 m ahead: the cells they leave where the floor was free block it
+// for a few updates. With wait_for_walkers the plan is kept (the person will have walked on);
+// the same cells, once older than trace_forget_after_s, are an obstacle to plan around.
+TEST(Explorer, APlanBlockedOnlyByAPasserByIsKeptWithWaitForWalkers) {
+  for (const bool wait : {false, true}) {
+    Corridor scene;
+    ExploreParams params = no_look_params(100, 60);
+    params.explore.wait_for_walkers = wait;
+    params.explore.trace_forget_after_s = 10.0;
+    params.explore.stall_min_commanded_m = 1000.0;  // the robot stands still here: no stall
+    Explorer explorer(params);
+    explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.0, true));
+    ASSERT_EQ(explorer.state(), ExploreState::drive);
+    const Eigen::Vector2i ahead = explorer.plan().cells[30];
+    scene.grid.fill(ahead.x(), ahead.y() - 1, ahead.x() + 2, ahead.y() + 2, CellState::occupied);
+    explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 1.0, true));
+    EXPECT_EQ(explorer.counters().replans, wait ? 0U : 1U) << wait;
+    EXPECT_EQ(explorer.counters().plans_kept_for_walkers, wait ? 1U : 0U) << wait;
+    EXPECT_EQ(explorer.state(), ExploreState::drive);
+    if (!wait) continue;
+    // Still there 10 s later: no passer-by.
+    explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 11.0, true));
+    EXPECT_EQ(explorer.counters().replans, 1U);
+    for (const Eigen::Vector2i& cell : explorer.plan().cells) {
+      EXPECT_TRUE(explorer.navigation_map().passable(cell.x(), cell.y()));
+    }
+  }
+}
+
 // An obstacle cell appears on the goal itself (a person's trace, a stereo outlier): the goal is
 // not failed; the plan goes to the nearest passable cell within goal_shift_radius_m. With the
 // shift off, the same update fails the goal.

@@ -86,6 +86,7 @@ struct ExploreCounters {
   std::uint64_t contact_clears = 0;  // contacts forgotten before concluding "explored" or "no way back"
   std::uint64_t trace_crossings = 0;   // plans let cross old traces rather than conclude "no plan" or "nothing left"
   std::uint64_t traces_confirmed = 0;  // trace cells still occupied after a look: obstacles since
+  std::uint64_t plans_kept_for_walkers = 0;  // blocked only by passers-by: kept (wait_for_walkers)
   std::uint64_t traces_seen_standing = 0;  // cells seen occupied in view for trace_view_updates: never traces
 };
 
@@ -112,6 +113,7 @@ class Explorer {
   bool clear_contacts(const ExploreInput& input);
   bool start_crossing_traces(const ExploreInput& input);
   void stop_crossing_traces(const ExploreInput& input);
+  bool blocked_by_passers_by(const ExploreInput& input, const Eigen::Vector2i& cell);
   bool plan_to_goal(const ExploreInput& input);
   void check_plan(const ExploreInput& input);
   bool replan(const ExploreInput& input);

@@ -61,6 +61,11 @@ class TraceMemory {
   // True when cell (x, y) of the grid last observed turned from free to occupied within
   // fresh_obstacle_hold_s before time_s.
   bool fresh(const GridView& grid, int x, int y, double time_s) const;
+  // True when `grid` (the grid last observed, or a copy with more cells occupied) has occupied
+  // cells within radius_m of cell (x, y), and every one of them is a cell the observed grid
+  // turned from free to occupied less than trace_forget_after_s before time_s and that was
+  // not seen standing since: most likely a person walking by (explore.wait_for_walkers).
+  bool only_passers_by_near(const GridView& grid, int x, int y, double radius_m, double time_s) const;
   double margin_m() const { return margin_m_; }
 
   // `grid` (the grid last observed, or a copy of it with more cells occupied) with its traces
