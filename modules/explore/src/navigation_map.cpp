@@ -275,15 +275,7 @@ bool NavigationMap::nearest_passable(const Eigen::Vector2i& cell, double radius_
 
 // The start cell is not checked: a goal's own cell may hold the trace that moved it.
 bool NavigationMap::in_sight(const Eigen::Vector2i& a, const Eigen::Vector2i& b) const {
-  const Eigen::Vector2d span = (b - a).cast<double>();
-  const double length_cells = span.norm();
-  if (length_cells == 0.0) return true;
-  bool clear = true;
-  march_cells(a.x(), a.y(), span / length_cells, length_cells, [&](int x, int y) {
-    clear = !(grid_.contains(x, y) && grid_.at(x, y) == CellState::occupied);
-    return clear;
-  });
-  return clear;
+  return no_occupied_between(grid_, a, b, true);
 }
 
 double NavigationMap::step_cost(int from_x, int from_y, int to_x, int to_y) const {

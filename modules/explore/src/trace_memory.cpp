@@ -12,21 +12,6 @@ namespace {
 
 constexpr float kNever = -std::numeric_limits<float>::infinity();
 
-// No occupied cell between the centres of cells a and b (both excepted): the camera at a
-// would see b.
-bool in_sight(const GridView& grid, const Eigen::Vector2i& a, const Eigen::Vector2i& b) {
-  const Eigen::Vector2d span = (b - a).cast<double>();
-  const double length_cells = span.norm();
-  if (length_cells == 0.0) return true;
-  bool clear = true;
-  march_cells(a.x(), a.y(), span / length_cells, length_cells, [&](int x, int y) {
-    if (x == b.x() && y == b.y()) return false;
-    clear = !(grid.contains(x, y) && grid.at(x, y) == CellState::occupied);
-    return clear;
-  });
-  return clear;
-}
-
 }  // namespace
 
 TraceMemory::TraceMemory(const core::ExploreConfig& config, int max_width, int max_height)
@@ -90,7 +75,7 @@ void TraceMemory::count_views(const GridView& grid, const CameraWedge& view) {
       if (!grid.contains(x, y)) continue;
       const std::size_t i = grid.index(x, y);
       if (grid.cells[i] != occupied || views_[i] >= view_updates_ || !view.contains(grid.center(x, y))) continue;
-      if (!in_sight(grid, camera, {x, y})) continue;
+      if (!no_occupied_between(grid, camera, {x, y}, false)) continue;
       if (++views_[i] < view_updates_) continue;
       turned_occupied_s_[i] = kNever;
       standing_[i] = 1;

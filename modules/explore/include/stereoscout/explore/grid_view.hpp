@@ -68,6 +68,22 @@ void march_cells(int x, int y, const Eigen::Vector2d& direction, double length_c
   }
 }
 
+// No occupied cell on the straight line from the centre of cell a to that of cell b; a itself
+// is not checked, b only with check_end (a camera at a sees an obstacle at b, but not past one).
+inline bool no_occupied_between(const GridView& grid, const Eigen::Vector2i& a, const Eigen::Vector2i& b,
+                                bool check_end) {
+  const Eigen::Vector2d span = (b - a).cast<double>();
+  const double length_cells = span.norm();
+  if (length_cells == 0.0) return true;
+  bool clear = true;
+  march_cells(a.x(), a.y(), span / length_cells, length_cells, [&](int x, int y) {
+    if (!check_end && x == b.x() && y == b.y()) return false;
+    clear = !(grid.contains(x, y) && grid.at(x, y) == CellState::occupied);
+    return clear;
+  });
+  return clear;
+}
+
 // Everything the module uses, in SI units, derived once from the config sections.
 struct ExploreParams {
   core::ExploreConfig explore;

@@ -55,8 +55,9 @@ class TraceMemory {
  public:
   TraceMemory(const core::ExploreConfig& config, int max_width, int max_height);
 
-  // With `view`, also counts the updates in which each cell that turned occupied stood in
-  // sight within it (trace_view_updates).
+  // With `view`, also counts the updates in which each occupied cell stood in sight within
+  // it (trace_view_updates): a cell that turned occupied is then no trace, and every such
+  // cell is remembered (standing_cells()).
   void observe(const GridView& grid, double time_s, const CameraWedge* view = nullptr);
   // True when cell (x, y) of the grid last observed turned from free to occupied within
   // fresh_obstacle_hold_s before time_s.
