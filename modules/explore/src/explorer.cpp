@@ -218,7 +218,7 @@ void Explorer::check_plan(const ExploreInput& input) {
 // A person crossing the plan ahead leaves cells that block it for a few updates; replanning
 // sent the robot on a detour, and the next crossing on another (wait_for_walkers). Kept when
 // the cell is known and only such recent cells, not seen standing, block it.
-bool Explorer::blocked_by_passers_by(const ExploreInput& input, const Eigen::Vector2i& cell) {
+bool Explorer::blocked_by_passers_by(const ExploreInput& input, const Eigen::Vector2i& cell) const {
   if (!params_.explore.wait_for_walkers || planning_grid_.at(cell.x(), cell.y()) == CellState::unknown) return false;
   return traces_.only_passers_by_near(planning_grid_, cell.x(), cell.y(),
                                       params_.lethal_distance_m(planning_grid_.resolution_m), input.time_s);

@@ -113,7 +113,7 @@ class Explorer {
   bool clear_contacts(const ExploreInput& input);
   bool start_crossing_traces(const ExploreInput& input);
   void stop_crossing_traces(const ExploreInput& input);
-  bool blocked_by_passers_by(const ExploreInput& input, const Eigen::Vector2i& cell);
+  bool blocked_by_passers_by(const ExploreInput& input, const Eigen::Vector2i& cell) const;
   bool plan_to_goal(const ExploreInput& input);
   void check_plan(const ExploreInput& input);
   bool replan(const ExploreInput& input);
