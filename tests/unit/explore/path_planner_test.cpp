@@ -165,6 +165,37 @@ TEST(PathPlanner, PlansTakeTheDoorRatherThanAGapThroughAWallSeenStanding) {
   EXPECT_FALSE(remembering.passable(30, 20));
 }
 
+// A person walked into the robot (radius 0.35 m) and left a cell 0.28 m from its centre: not
+// deep under it, so an obstacle, and the robot's own cell and all its neighbours are lethal.
+// Plans still leave, across the cells under the disc and away from the cell.
+TEST(PathPlanner, PlansLeadOutOfAnObstacleInsideTheRobotsDisc) {
+  const ExploreParams params = test_params(60, 40);
+  NavigationMap map(params);
+  PathPlanner planner(params);
+  Plan plan(4096);
+  TestGrid grid(60, 40, CellState::free);
+  grid.walls();
+  grid.set(22, 22, CellState::occupied);
+  const Eigen::Vector2i robot_cell(20, 20);
+  const Eigen::Vector2d robot = grid.view().center(robot_cell.x(), robot_cell.y());
+  ASSERT_TRUE(map.rebuild(grid.view(), robot, robot));
+  EXPECT_TRUE(map.passable(robot_cell.x(), robot_cell.y()));
+  for (const Eigen::Vector2i& goal : {Eigen::Vector2i(20, 5), Eigen::Vector2i(22, 35)}) {
+    ASSERT_EQ(planner.plan(map, robot_cell, goal, plan), PlanResult::found);
+    for (const Eigen::Vector2i& cell : plan.cells) {
+      EXPECT_NE(cell, Eigen::Vector2i(22, 22));
+      if ((grid.view().center(cell.x(), cell.y()) - robot).norm() > params.robot_radius_m) {
+        EXPECT_GE(map.occupied_distance_m(cell.x(), cell.y()), params.lethal_distance_m(0.1));
+      }
+    }
+  }
+  // From where its own cell keeps clear of the obstacle, the cells near it stay lethal.
+  const Eigen::Vector2d away = grid.view().center(20, 10);
+  ASSERT_TRUE(map.rebuild(grid.view(), away, away));
+  EXPECT_FALSE(map.passable(20, 20));
+  EXPECT_TRUE(map.passable(20, 10));
+}
+
 TEST(PathPlanner, ReportsBlockedGoalsFullPlansAndNoPath) {
   const ExploreParams params = test_params(60, 40);
   NavigationMap map(params);

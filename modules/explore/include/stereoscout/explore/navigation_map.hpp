@@ -6,7 +6,9 @@
 //
 // Occupied cells deep under the robot's disc where it stands (centre more than a cell inside
 // it) are ignored: nothing else can be there; they are traces of a person who walked into the
-// robot. A grazed obstacle's cell lies farther out and stays.
+// robot. A grazed obstacle's cell lies farther out and stays; when it leaves the robot's own
+// cell lethal, the cells under the disc that are lethal only for their clearance are passable
+// at the highest cost, so that a plan can lead away from it (open_way_out()).
 //
 // Unobservable pockets: an unknown region (4-connected, so that a diagonal wall line closes
 // it) that does not reach the window's edge and covers at most explore.max_pocket_area_m2 is
@@ -89,6 +91,7 @@ class NavigationMap {
   bool unknown_passable(int x, int y) const;
   bool obstacle_site(int x, int y) const;
   void classify();
+  void open_way_out();
   double site_distance_m(const std::int32_t* sites, int x, int y) const;
   bool under_robot(int x, int y) const;
   void find_pockets();
