@@ -103,8 +103,10 @@ struct ExploreParams {
   static ExploreParams from_config(const core::ExploreConfig& explore, const core::RobotConfig& robot,
                                    const core::CameraConfig& camera, int max_width, int max_height);
   // A cell centre closer than this to an occupied cell centre is a collision: the robot radius
-  // plus half a cell for the discretisation of the obstacle's true surface.
-  double lethal_distance_m(double resolution_m) const { return robot_radius_m + 0.5 * resolution_m; }
+  // plus lethal_margin_cells of a cell for the discretisation of the obstacle's true surface.
+  double lethal_distance_m(double resolution_m) const {
+    return robot_radius_m + explore.lethal_margin_cells * resolution_m;
+  }
   // Goals keep this clearance; paths pay a high cost below it.
   double safe_distance_m(double resolution_m) const { return lethal_distance_m(resolution_m) + explore.safety_margin_m; }
   double ray_cap_m() const {
