@@ -49,17 +49,23 @@ bool NavigationMap::rebuild(const GridView& grid, const Eigen::Vector2d& robot, 
 // The robot stands where its disc is: when an obstacle cell lies inside it, short of deep (a
 // person who walked into the robot, a grazed jamb, a pose correction), its own cell and every
 // neighbour are lethal, and no plan could leave. Then the cells under the disc that are lethal
-// only for their clearance become passable at the highest obstacle cost, so plans lead out by
-// the shortest way, away from the cell. Nothing changes while the robot's own cell is passable.
+// only for their clearance, and no nearer an obstacle than the robot's own cell, become
+// passable at the highest obstacle cost: plans lead out away from the cell (a plan past it
+// would have the safety check stop the robot, which never moves deeper into a cell it
+// overlaps). Nothing changes while the robot's own cell is passable.
 void NavigationMap::open_way_out() {
   const Eigen::Vector2i robot = grid_.cell_of(robot_);
   if (!window_.contains(robot.x(), robot.y()) || passable(robot.x(), robot.y())) return;
+  const double clearance = occupied_distance_m(robot.x(), robot.y());
   const int reach = static_cast<int>(std::ceil(params_.robot_radius_m / grid_.resolution_m));
   const double radius2 = params_.robot_radius_m * params_.robot_radius_m;
   for (int y = robot.y() - reach; y <= robot.y() + reach; ++y) {
     for (int x = robot.x() - reach; x <= robot.x() + reach; ++x) {
       if (!window_.contains(x, y) || (grid_.center(x, y) - robot_).squaredNorm() > radius2) continue;
-      if (obstacle_site(x, y) || (grid_.at(x, y) == CellState::unknown && !unknown_passable(x, y))) continue;
+      if (obstacle_site(x, y) || (grid_.at(x, y) == CellState::unknown && !unknown_passable(x, y)) ||
+          occupied_distance_m(x, y) < clearance) {
+        continue;
+      }
       traversability_[index(x, y)] = static_cast<std::uint8_t>(Traversability::inflated);
     }
   }
