@@ -107,13 +107,19 @@ TEST(PathPlanner, FindsTheCheapestPathOnRandomGrids) {
   EXPECT_GT(found, 20);  // most random grids have a path
 }
 
+// A 6 m x 4 m room (10 cm cells) with walls round it, the default robot and a planner.
+struct WalledRoom {
+  ExploreParams params = test_params(60, 40);
+  NavigationMap map{params};
+  PathPlanner planner{params};
+  Plan plan{4096};
+  TestGrid grid{60, 40, CellState::free};
+  WalledRoom() { grid.walls(); }
+};
+
 TEST(PathPlanner, StraightLineInOpenSpaceAndKeepsAwayFromObstacles) {
-  const ExploreParams params = test_params(60, 40);
-  NavigationMap map(params);
-  PathPlanner planner(params);
-  Plan plan(4096);
-  TestGrid grid(60, 40, CellState::free);
-  grid.walls();
+  WalledRoom room;
+  auto& [params, map, planner, plan, grid] = room;
   const Eigen::Vector2d robot(1.0, 2.0);
   ASSERT_TRUE(map.rebuild(grid.view(), robot, robot));
   ASSERT_EQ(planner.plan(map, {10, 20}, {50, 20}, plan), PlanResult::found);
@@ -170,12 +176,8 @@ TEST(PathPlanner, PlansTakeTheDoorRatherThanAGapThroughAWallSeenStanding) {
 // Plans still leave, across the cells under the disc and away from the cell, also to a goal
 // beyond it.
 TEST(PathPlanner, PlansLeadOutOfAnObstacleInsideTheRobotsDisc) {
-  const ExploreParams params = test_params(60, 40);
-  NavigationMap map(params);
-  PathPlanner planner(params);
-  Plan plan(4096);
-  TestGrid grid(60, 40, CellState::free);
-  grid.walls();
+  WalledRoom room;
+  auto& [params, map, planner, plan, grid] = room;
   grid.set(22, 22, CellState::occupied);
   const Eigen::Vector2i robot_cell(20, 20);
   const Eigen::Vector2d robot = grid.view().center(robot_cell.x(), robot_cell.y());
@@ -201,15 +203,11 @@ TEST(PathPlanner, PlansLeadOutOfAnObstacleInsideTheRobotsDisc) {
 }
 
 TEST(PathPlanner, ReportsBlockedGoalsFullPlansAndNoPath) {
-  const ExploreParams params = test_params(60, 40);
-  NavigationMap map(params);
-  PathPlanner planner(params);
-  TestGrid grid(60, 40, CellState::free);
-  grid.walls();
+  WalledRoom room;
+  auto& [params, map, planner, plan, grid] = room;
   grid.fill(30, 0, 31, 40, CellState::occupied);  // splits the room
   const Eigen::Vector2d robot(1.0, 2.0);
   ASSERT_TRUE(map.rebuild(grid.view(), robot, robot));
-  Plan plan(4096);
   EXPECT_EQ(planner.plan(map, {10, 20}, {50, 20}, plan), PlanResult::no_path);
   EXPECT_EQ(planner.plan(map, {10, 20}, {30, 20}, plan), PlanResult::goal_blocked);
   Plan tiny(5);
