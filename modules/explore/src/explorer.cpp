@@ -572,6 +572,9 @@ bool Explorer::stretch_is_clear(const GridView& grid, const core::Pose2& pose, d
     travelled += (plan_.waypoints[k] - previous).norm();
     previous = plan_.waypoints[k];
     if (travelled > params_.explore.safety_check_distance_m) break;
+    // A waypoint this near is where the robot stands (the centre of its own cell), no move:
+    // the point ahead stands for it.
+    if ((plan_.waypoints[k] - robot).norm() < kAheadCheck_m) continue;
     if (!disc_is_clear(grid, plan_.waypoints[k], robot, time_s)) return false;
   }
   return true;

@@ -459,6 +459,20 @@ TEST(Explorer, DoesNotPushDeeperIntoAnObstacleItGrazes) {
   EXPECT_EQ(unblocked.counters().safety_stops, 0U);
 }
 
+// The plan's first waypoint is the centre of the robot's own cell, 7 cm ahead-left of it: a
+// cell 0.29 m behind-left (inside the disc, not deep) is 0.28 m from that centre. Moving on
+// east takes the robot away from it, so it drives; the lab's robot stood in a walker's lane
+// for 1400 s, stopped by such a waypoint at every try.
+TEST(Explorer, TheWaypointAtTheRobotsOwnCellIsNoMoveDeeper) {
+  Corridor scene;
+  Explorer explorer(no_look_params(100, 60));
+  ASSERT_GT(explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.0, true)).drive.linear_mps, 0.0);
+  scene.grid.set(13, 32, CellState::occupied);
+  EXPECT_GT(explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.1, true)).drive.linear_mps, 0.0);
+  EXPECT_EQ(explorer.counters().safety_stops, 0U);
+  EXPECT_EQ(explorer.counters().plan_failures, 0U);
+}
+
 TEST(Explorer, EmergencyStopHaltsInTheSameTickAndResumes) {
   Corridor scene;
   Explorer explorer(no_look_params(100, 60));
