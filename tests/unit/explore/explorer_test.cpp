@@ -441,21 +441,23 @@ TEST(Explorer, BacksOffOnlyIntoClearSpaceAndForALimitedTime) {
   EXPECT_NEAR(time_s - started_s, 2.0 * params.explore.stall_back_off_m / params.max_speed_mps, 0.06);
 }
 
-TEST(Explorer, DoesNotPushDeeperIntoAnObstacleItGrazes) {
+// The speed the explorer commands at (1.5, 3.0) heading east in the corridor, right after
+// cell (x, y) turned occupied: it was driving east on the step before.
+double speed_after_a_cell_appears(int x, int y, bool grid_updated, Explorer& explorer) {
   Corridor scene;
-  Explorer explorer(no_look_params(100, 60));
-  ASSERT_GT(explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.0, true)).drive.linear_mps, 0.0);
+  EXPECT_GT(explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.0, true)).drive.linear_mps, 0.0);
+  scene.grid.set(x, y, CellState::occupied);
+  return explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.1, grid_updated)).drive.linear_mps;
+}
+
+TEST(Explorer, DoesNotPushDeeperIntoAnObstacleItGrazes) {
   // A cell whose centre is 0.29 m ahead-left: inside the 0.35 m disc already, not deep under it.
-  scene.grid.set(17, 31, CellState::occupied);
-  const ExploreOutput stopped = explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.1, false));
-  EXPECT_EQ(stopped.drive.linear_mps, 0.0);
+  Explorer explorer(no_look_params(100, 60));
+  EXPECT_EQ(speed_after_a_cell_appears(17, 31, false, explorer), 0.0);
   EXPECT_EQ(explorer.counters().safety_stops, 1U);
   // Deep under the robot (0.11 m from its centre: a person's trace), it does not stop it.
-  Corridor trace;
   Explorer unblocked(no_look_params(100, 60));
-  ASSERT_GT(unblocked.step(input_at(trace.grid.view(), 1.5, 3.0, 0.0, 0.0, true)).drive.linear_mps, 0.0);
-  trace.grid.set(15, 30, CellState::occupied);
-  EXPECT_GT(unblocked.step(input_at(trace.grid.view(), 1.5, 3.0, 0.0, 0.1, false)).drive.linear_mps, 0.0);
+  EXPECT_GT(speed_after_a_cell_appears(15, 30, false, unblocked), 0.0);
   EXPECT_EQ(unblocked.counters().safety_stops, 0U);
 }
 
@@ -464,11 +466,8 @@ TEST(Explorer, DoesNotPushDeeperIntoAnObstacleItGrazes) {
 // east takes the robot away from it, so it drives; the lab's robot stood in a walker's lane
 // for 1400 s, stopped by such a waypoint at every try.
 TEST(Explorer, TheWaypointAtTheRobotsOwnCellIsNoMoveDeeper) {
-  Corridor scene;
   Explorer explorer(no_look_params(100, 60));
-  ASSERT_GT(explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.0, true)).drive.linear_mps, 0.0);
-  scene.grid.set(13, 32, CellState::occupied);
-  EXPECT_GT(explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.1, true)).drive.linear_mps, 0.0);
+  EXPECT_GT(speed_after_a_cell_appears(13, 32, true, explorer), 0.0);
   EXPECT_EQ(explorer.counters().safety_stops, 0U);
   EXPECT_EQ(explorer.counters().plan_failures, 0U);
 }
