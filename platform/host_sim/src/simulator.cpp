@@ -9,7 +9,7 @@
 namespace stereoscout::host_sim {
 namespace {
 
-// A contact ends when the robot's disc is this far clear of every obstacle.
+// A contact ends when the robot's disc is this far clear of the obstacle or person.
 constexpr double kContactClearance_m = 0.02;
 
 std::int64_t seconds_to_ns(double seconds) { return static_cast<std::int64_t>(std::llround(seconds * 1e9)); }
@@ -50,9 +50,12 @@ void Simulator::command_pan(double pan_rad) {
 bool Simulator::collides(const Eigen::Vector2d& here, const Eigen::Vector2d& there) const {
   if (obstacles_.disc_collides(there, robot_.radius_m)) return true;
   for (std::size_t i = 0; i < world_.people.size(); ++i) {
-    const Eigen::Vector2d person = world_.person_position(i, time_s());
     // Ours only when the step makes a contact that standing still would not have: a contact
-    // the person made (walking into the robot, overtaking it) lasts until they walk on.
+    // the person made (walking into the robot, overtaking it) lasts until they walk on. The
+    // simulated people walk through the robot; one who did so and is just leaving ahead of it
+    // has not been run into by its next step.
+    if (person_in_contact_[i] != 0) continue;
+    const Eigen::Vector2d person = world_.person_position(i, time_s());
     const double limit = robot_.radius_m + world_.people[i].radius;
     if ((person - there).norm() < limit && (person - here).norm() >= limit) return true;
   }
@@ -62,9 +65,13 @@ bool Simulator::collides(const Eigen::Vector2d& here, const Eigen::Vector2d& the
 void Simulator::count_person_contacts() {
   for (std::size_t i = 0; i < world_.people.size(); ++i) {
     const double distance = (world_.person_position(i, time_s()) - pose_.translation()).norm();
-    const bool overlapping = distance < robot_.radius_m + world_.people[i].radius;
-    if (overlapping && person_in_contact_[i] == 0) ++person_contacts_;
-    person_in_contact_[i] = overlapping ? 1 : 0;
+    const double limit = robot_.radius_m + world_.people[i].radius;
+    if (distance < limit) {
+      if (person_in_contact_[i] == 0) ++person_contacts_;
+      person_in_contact_[i] = 1;
+    } else if (distance >= limit + kContactClearance_m) {
+      person_in_contact_[i] = 0;
+    }
   }
 }
 

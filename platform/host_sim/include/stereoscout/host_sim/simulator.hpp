@@ -14,7 +14,8 @@
 // last one; pushing on, or sliding along a wall, refused step after step, is one contact. People walk their
 // loops regardless of the robot: a person who walks into the robot (stopped, turning, or
 // overtaken from behind) is the person's collision, not the robot's; each such contact
-// (start of an overlap) is counted in person_contact_count(), and lasts until they walk on.
+// (start of an overlap) is counted in person_contact_count(), and lasts until they walk on
+// (2 cm clear): the robot's steps meanwhile, after a person who walked through it, are no collision.
 //
 // Odometry: at robot.odometry_rate_hz the true motion since the last reading is corrupted by
 // the noise model of the floor under the robot (config sim.tile / sim.carpet) and integrated
@@ -119,7 +120,8 @@ class Simulator {
   bool in_contact_ = false;  // a step was refused and the robot has not moved clear since
   std::array<CollisionEvent, kCollisionLogSize> collision_log_{};
   std::uint64_t person_contacts_ = 0;
-  std::vector<std::uint8_t> person_in_contact_;  // one per person, sized at construction
+  std::vector<std::uint8_t> person_in_contact_;  // one per person, sized at construction; set from the
+                                               // overlap until the person is 2 cm clear
   double distance_m_ = 0.0;
 };
 
