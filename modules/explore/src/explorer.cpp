@@ -203,16 +203,37 @@ void Explorer::check_plan(const ExploreInput& input) {
   }
   for (std::size_t k = follower_.progress() + 1; k < plan_.cells.size(); ++k) {
     if (!map_.passable(plan_.cells[k].x(), plan_.cells[k].y())) {
-      if (blocked_by_passers_by(input, plan_.cells[k])) {
+      if (blocked_by_passers_by(input, plan_.cells[k]) && may_wait_for_walkers(input.time_s)) {
         ++counters_.plans_kept_for_walkers;
         return;
       }
+      stop_waiting_for_walkers(input.time_s);
       ++counters_.replans;
       note(ExploreEventKind::plan_blocked, input);
       if (!replan(input)) goal_failed(input);
       return;
     }
   }
+  stop_waiting_for_walkers(input.time_s);
+}
+
+// A passer-by has walked on within seconds; a plan that stays blocked longer is blocked by
+// something that looks the same to the trace memory, such as a blank wall's restored cells.
+// So one goal's kept plans may take walker_wait_per_goal_s in all.
+bool Explorer::may_wait_for_walkers(double time_s) {
+  if (!waiting_for_walkers_) {
+    waiting_for_walkers_ = true;
+    walker_wait_since_s_ = time_s;
+  }
+  if (walker_waited_s_ + (time_s - walker_wait_since_s_) <= params_.explore.walker_wait_per_goal_s) return true;
+  ++counters_.walker_waits_ended;
+  return false;
+}
+
+void Explorer::stop_waiting_for_walkers(double time_s) {
+  if (!waiting_for_walkers_) return;
+  waiting_for_walkers_ = false;
+  walker_waited_s_ += time_s - walker_wait_since_s_;
 }
 
 // A person crossing the plan ahead leaves cells that block it for a few updates; replanning
@@ -258,6 +279,11 @@ void Explorer::begin_pursuit(const ExploreInput& input) {
   longest_plan_m_ = 0.0;
 }
 
+void Explorer::begin_walker_waits() {
+  waiting_for_walkers_ = false;
+  walker_waited_s_ = 0.0;
+}
+
 // What is left of the plan: to the waypoint the follower is at, then along the rest. A plan
 // around a wall is longer than the straight line to the goal and, for a while, leads away
 // from it; along the plan the robot makes progress all the same.
@@ -301,6 +327,7 @@ void Explorer::choose_goal(const ExploreInput& input) {
     goal_ = goal;
     note(ExploreEventKind::goal_chosen, input);
     begin_pursuit(input);
+    begin_walker_waits();
     if (replan(input)) {
       state_ = ExploreState::drive;
       return;
@@ -327,6 +354,7 @@ void Explorer::finish_exploring(const ExploreInput& input, FinishReason reason) 
   goal_.position = position_of(start_pose_);
   goal_.cell = map_.grid().cell_of(goal_.position);
   begin_pursuit(input);
+  begin_walker_waits();
   if (!replan(input)) goal_failed(input);
 }
 

@@ -105,6 +105,42 @@ TEST(Explorer, APlanBlockedOnlyByAPasserByIsKeptWithWaitForWalkers) {
   }
 }
 
+// Cells that look like a passer-by's can be a blank wall's, erased by grazing rays and restored
+// by the next view. So a goal's plans are kept for walker_wait_per_goal_s in all (the spans
+// add up), then replanned as without wait_for_walkers.
+TEST(Explorer, APlanKeptForWalkersIsReplannedOnceTheGoalsWaitIsUsedUp) {
+  Corridor scene;
+  ExploreParams params = no_look_params(100, 60);
+  params.explore.wait_for_walkers = true;
+  params.explore.walker_wait_per_goal_s = 5.0;
+  params.explore.trace_forget_after_s = 10.0;
+  params.explore.stall_min_commanded_m = 1000.0;  // the robot stands still here: no stall
+  Explorer explorer(params);
+  explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.0, true));
+  ASSERT_EQ(explorer.state(), ExploreState::drive);
+  const Eigen::Vector2i ahead = explorer.plan().cells[30];
+  const auto block = [&](CellState state) {
+    scene.grid.fill(ahead.x(), ahead.y() - 1, ahead.x() + 2, ahead.y() + 2, state);
+  };
+  block(CellState::occupied);
+  explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 1.0, true));  // waiting from 1 s
+  block(CellState::free);
+  explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 3.0, true));  // walked on: 2 s waited
+  block(CellState::occupied);
+  explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 4.0, true));  // waiting again from 4 s
+  explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 6.5, true));  // 4.5 s in all
+  EXPECT_EQ(explorer.counters().plans_kept_for_walkers, 3U);
+  EXPECT_EQ(explorer.counters().replans, 0U);
+  explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 8.0, true));  // 6 s in all: used up
+  EXPECT_EQ(explorer.counters().plans_kept_for_walkers, 3U);
+  EXPECT_EQ(explorer.counters().walker_waits_ended, 1U);
+  EXPECT_EQ(explorer.counters().replans, 1U);
+  EXPECT_EQ(explorer.state(), ExploreState::drive);
+  for (const Eigen::Vector2i& cell : explorer.plan().cells) {
+    EXPECT_TRUE(explorer.navigation_map().passable(cell.x(), cell.y()));
+  }
+}
+
 // An obstacle cell appears on the goal itself (a person's trace, a stereo outlier): the goal is
 // not failed; the plan goes to the nearest passable cell within goal_shift_radius_m. With the
 // shift off, the same update fails the goal.

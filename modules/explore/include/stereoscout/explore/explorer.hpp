@@ -87,6 +87,7 @@ struct ExploreCounters {
   std::uint64_t trace_crossings = 0;   // plans let cross old traces rather than conclude "no plan" or "nothing left"
   std::uint64_t traces_confirmed = 0;  // trace cells still occupied after a look: obstacles since
   std::uint64_t plans_kept_for_walkers = 0;  // blocked only by passers-by: kept (wait_for_walkers)
+  std::uint64_t walker_waits_ended = 0;      // a goal's walker_wait_per_goal_s used up: replanned as without it
   std::uint64_t traces_seen_standing = 0;  // cells seen occupied in view for trace_view_updates: never traces
 };
 
@@ -114,6 +115,9 @@ class Explorer {
   bool start_crossing_traces(const ExploreInput& input);
   void stop_crossing_traces(const ExploreInput& input);
   bool blocked_by_passers_by(const ExploreInput& input, const Eigen::Vector2i& cell) const;
+  bool may_wait_for_walkers(double time_s);
+  void stop_waiting_for_walkers(double time_s);
+  void begin_walker_waits();
   bool plan_to_goal(const ExploreInput& input);
   void check_plan(const ExploreInput& input);
   bool replan(const ExploreInput& input);
@@ -177,6 +181,10 @@ class Explorer {
   double last_progress_time_s_ = 0.0;
   double goal_started_s_ = 0.0;
   double longest_plan_m_ = 0.0;
+  // Plans kept for passers-by (wait_for_walkers): the time spent so on this goal (or the way back).
+  bool waiting_for_walkers_ = false;
+  double walker_wait_since_s_ = 0.0;
+  double walker_waited_s_ = 0.0;
 };
 
 }  // namespace stereoscout::explore
