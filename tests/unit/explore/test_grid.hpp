@@ -55,7 +55,11 @@ inline ExploreParams test_params(int width, int height, bool has_pan_unit = true
   core::RobotConfig robot;
   core::CameraConfig camera;
   camera.has_pan_unit = has_pan_unit;
-  return ExploreParams::from_config(core::ExploreConfig{}, robot, camera, width, height);
+  // The scenes put obstacles into free cells from one step to the next, as a passer-by does;
+  // the tests of waiting for walkers switch it on themselves.
+  core::ExploreConfig explore;
+  explore.wait_for_walkers = false;
+  return ExploreParams::from_config(explore, robot, camera, width, height);
 }
 
 }  // namespace stereoscout::explore::testing
