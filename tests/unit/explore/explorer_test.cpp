@@ -76,21 +76,29 @@ TEST(Explorer, ReplansWhenAnObstacleAppearsOnThePath) {
   }
 }
 
+ExploreParams standing_robot_params(bool wait_for_walkers) {
+  ExploreParams params = no_look_params(100, 60);
+  params.explore.wait_for_walkers = wait_for_walkers;
+  params.explore.trace_forget_after_s = 10.0;
+  params.explore.stall_min_commanded_m = 1000.0;  // the robot stands still here: no stall
+  return params;
+}
+
+// A person across the plan: the cells around its waypoint `ahead`.
+void fill_across_plan(Corridor& scene, const Eigen::Vector2i& ahead, CellState state) {
+  scene.grid.fill(ahead.x(), ahead.y() - 1, ahead.x() + 2, ahead.y() + 2, state);
+}
+
 // A person crosses the plan 3 m ahead: the cells they leave where the floor was free block it
 // for a few updates. With wait_for_walkers the plan is kept (the person will have walked on);
 // the same cells, once older than trace_forget_after_s, are an obstacle to plan around.
 TEST(Explorer, APlanBlockedOnlyByAPasserByIsKeptWithWaitForWalkers) {
   for (const bool wait : {false, true}) {
     Corridor scene;
-    ExploreParams params = no_look_params(100, 60);
-    params.explore.wait_for_walkers = wait;
-    params.explore.trace_forget_after_s = 10.0;
-    params.explore.stall_min_commanded_m = 1000.0;  // the robot stands still here: no stall
-    Explorer explorer(params);
+    Explorer explorer(standing_robot_params(wait));
     explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.0, true));
     ASSERT_EQ(explorer.state(), ExploreState::drive);
-    const Eigen::Vector2i ahead = explorer.plan().cells[30];
-    scene.grid.fill(ahead.x(), ahead.y() - 1, ahead.x() + 2, ahead.y() + 2, CellState::occupied);
+    fill_across_plan(scene, explorer.plan().cells[30], CellState::occupied);
     explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 1.0, true));
     EXPECT_EQ(explorer.counters().replans, wait ? 0U : 1U) << wait;
     EXPECT_EQ(explorer.counters().plans_kept_for_walkers, wait ? 1U : 0U) << wait;
@@ -110,18 +118,13 @@ TEST(Explorer, APlanBlockedOnlyByAPasserByIsKeptWithWaitForWalkers) {
 // add up), then replanned as without wait_for_walkers.
 TEST(Explorer, APlanKeptForWalkersIsReplannedOnceTheGoalsWaitIsUsedUp) {
   Corridor scene;
-  ExploreParams params = no_look_params(100, 60);
-  params.explore.wait_for_walkers = true;
+  ExploreParams params = standing_robot_params(true);
   params.explore.walker_wait_per_goal_s = 5.0;
-  params.explore.trace_forget_after_s = 10.0;
-  params.explore.stall_min_commanded_m = 1000.0;  // the robot stands still here: no stall
   Explorer explorer(params);
   explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.0, true));
   ASSERT_EQ(explorer.state(), ExploreState::drive);
   const Eigen::Vector2i ahead = explorer.plan().cells[30];
-  const auto block = [&](CellState state) {
-    scene.grid.fill(ahead.x(), ahead.y() - 1, ahead.x() + 2, ahead.y() + 2, state);
-  };
+  const auto block = [&](CellState state) { fill_across_plan(scene, ahead, state); };
   block(CellState::occupied);
   explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 1.0, true));  // waiting from 1 s
   block(CellState::free);
