@@ -18,6 +18,7 @@ const char* to_string(ExploreEventKind kind) {
     case ExploreEventKind::look: return "look";
     case ExploreEventKind::contacts_cleared: return "contacts_cleared";
     case ExploreEventKind::crossing_traces: return "crossing_traces";
+    case ExploreEventKind::plan_kept: return "plan_kept";
     case ExploreEventKind::explored: return "explored";
     case ExploreEventKind::time_limit: return "time_limit";
     case ExploreEventKind::return_failed: return "return_failed";

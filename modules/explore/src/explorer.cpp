@@ -203,7 +203,7 @@ void Explorer::check_plan(const ExploreInput& input) {
   }
   for (std::size_t k = follower_.progress() + 1; k < plan_.cells.size(); ++k) {
     if (!map_.passable(plan_.cells[k].x(), plan_.cells[k].y())) {
-      if (blocked_by_passers_by(input, plan_.cells[k]) && may_wait_for_walkers(input.time_s)) {
+      if (blocked_by_passers_by(input, plan_.cells[k]) && may_wait_for_walkers(input)) {
         ++counters_.plans_kept_for_walkers;
         return;
       }
@@ -220,12 +220,13 @@ void Explorer::check_plan(const ExploreInput& input) {
 // A passer-by has walked on within seconds; a plan that stays blocked longer is blocked by
 // something that looks the same to the trace memory, such as a blank wall's restored cells.
 // So one goal's kept plans may take walker_wait_per_goal_s in all.
-bool Explorer::may_wait_for_walkers(double time_s) {
+bool Explorer::may_wait_for_walkers(const ExploreInput& input) {
   if (!waiting_for_walkers_) {
     waiting_for_walkers_ = true;
-    walker_wait_since_s_ = time_s;
+    walker_wait_since_s_ = input.time_s;
+    note(ExploreEventKind::plan_kept, input);
   }
-  if (walker_waited_s_ + (time_s - walker_wait_since_s_) <= params_.explore.walker_wait_per_goal_s) return true;
+  if (walker_waited_s_ + (input.time_s - walker_wait_since_s_) <= params_.explore.walker_wait_per_goal_s) return true;
   ++counters_.walker_waits_ended;
   return false;
 }

@@ -134,6 +134,11 @@ TEST(Explorer, APlanKeptForWalkersIsReplannedOnceTheGoalsWaitIsUsedUp) {
   explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 6.5, true));  // 4.5 s in all
   EXPECT_EQ(explorer.counters().plans_kept_for_walkers, 3U);
   EXPECT_EQ(explorer.counters().replans, 0U);
+  std::size_t spans_journaled = 0;
+  for (std::size_t i = 0; i < explorer.journal().size(); ++i) {
+    if (explorer.journal()[i].kind == ExploreEventKind::plan_kept) ++spans_journaled;
+  }
+  EXPECT_EQ(spans_journaled, 2U);  // once at the start of each span
   explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 8.0, true));  // 6 s in all: used up
   EXPECT_EQ(explorer.counters().plans_kept_for_walkers, 3U);
   EXPECT_EQ(explorer.counters().walker_waits_ended, 1U);

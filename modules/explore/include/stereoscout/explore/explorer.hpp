@@ -115,7 +115,7 @@ class Explorer {
   bool start_crossing_traces(const ExploreInput& input);
   void stop_crossing_traces(const ExploreInput& input);
   bool blocked_by_passers_by(const ExploreInput& input, const Eigen::Vector2i& cell) const;
-  bool may_wait_for_walkers(double time_s);
+  bool may_wait_for_walkers(const ExploreInput& input);
   void stop_waiting_for_walkers(double time_s);
   void begin_walker_waits();
   bool plan_to_goal(const ExploreInput& input);
