@@ -221,14 +221,17 @@ void Explorer::check_plan(const ExploreInput& input) {
 // something that looks the same to the trace memory, such as a blank wall's restored cells.
 // So one goal's kept plans may take walker_wait_per_goal_s in all.
 bool Explorer::may_wait_for_walkers(const ExploreInput& input) {
+  const double since_s = waiting_for_walkers_ ? walker_wait_since_s_ : input.time_s;
+  if (walker_waited_s_ + (input.time_s - since_s) > params_.explore.walker_wait_per_goal_s) {
+    ++counters_.walker_waits_ended;
+    return false;
+  }
   if (!waiting_for_walkers_) {
     waiting_for_walkers_ = true;
     walker_wait_since_s_ = input.time_s;
     note(ExploreEventKind::plan_kept, input);
   }
-  if (walker_waited_s_ + (input.time_s - walker_wait_since_s_) <= params_.explore.walker_wait_per_goal_s) return true;
-  ++counters_.walker_waits_ended;
-  return false;
+  return true;
 }
 
 void Explorer::stop_waiting_for_walkers(double time_s) {

@@ -134,15 +134,24 @@ TEST(Explorer, APlanKeptForWalkersIsReplannedOnceTheGoalsWaitIsUsedUp) {
   explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 6.5, true));  // 4.5 s in all
   EXPECT_EQ(explorer.counters().plans_kept_for_walkers, 3U);
   EXPECT_EQ(explorer.counters().replans, 0U);
-  std::size_t spans_journaled = 0;
-  for (std::size_t i = 0; i < explorer.journal().size(); ++i) {
-    if (explorer.journal()[i].kind == ExploreEventKind::plan_kept) ++spans_journaled;
-  }
-  EXPECT_EQ(spans_journaled, 2U);  // once at the start of each span
+  const auto spans_journaled = [&explorer] {
+    std::size_t spans = 0;
+    for (std::size_t i = 0; i < explorer.journal().size(); ++i) {
+      if (explorer.journal()[i].kind == ExploreEventKind::plan_kept) ++spans;
+    }
+    return spans;
+  };
+  EXPECT_EQ(spans_journaled(), 2U);  // once at the start of each span
   explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 8.0, true));  // 6 s in all: used up
   EXPECT_EQ(explorer.counters().plans_kept_for_walkers, 3U);
   EXPECT_EQ(explorer.counters().walker_waits_ended, 1U);
   EXPECT_EQ(explorer.counters().replans, 1U);
+  // A new passer-by across the new plan: refused at once, and not journaled as kept.
+  fill_across_plan(scene, explorer.plan().cells[30], CellState::occupied);
+  explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 9.0, true));
+  EXPECT_EQ(explorer.counters().walker_waits_ended, 2U);
+  EXPECT_EQ(explorer.counters().replans, 2U);
+  EXPECT_EQ(spans_journaled(), 2U);
   EXPECT_EQ(explorer.state(), ExploreState::drive);
   for (const Eigen::Vector2i& cell : explorer.plan().cells) {
     EXPECT_TRUE(explorer.navigation_map().passable(cell.x(), cell.y()));
