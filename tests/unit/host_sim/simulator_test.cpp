@@ -236,9 +236,9 @@ TEST(Simulator, APersonWalkingThroughTheRobotFromBehindIsNoCollisionOfOursAsThey
   // A person walks east along the robot's own line (y = 10) at 0.5 m/s, through the robot
   // driving east at 0.12 m/s, and on ahead. As they leave, the robot's next step used to
   // close the last millimetres to them before their own step did: one time in four, by the
-  // phase of the integration steps. So several start points, a few millimetres apart.
-  for (int offset_mm = 0; offset_mm < 10; ++offset_mm) {
-    const double start_x = 6.0 + 0.0007 * offset_mm;
+  // phase of the integration steps. So ten start points, 0.7 mm apart.
+  for (int k = 0; k < 10; ++k) {
+    const double start_x = 6.0 + 0.0007 * k;
     const World world = load_or_fail(hall_yaml(false) + "people:\n  - {waypoints: [[" + std::to_string(start_x) +
                                      ", 10], [19, 10]], speed: 0.5}\n");
     Simulator simulator(world, core::RobotConfig{}, core::CameraConfig{}, noiseless(), 1);
