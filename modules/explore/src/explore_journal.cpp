@@ -14,6 +14,7 @@ const char* to_string(ExploreEventKind kind) {
     case ExploreEventKind::goal_failed: return "goal_failed";
     case ExploreEventKind::goal_blacklisted: return "goal_blacklisted";
     case ExploreEventKind::safety_stop: return "safety_stop";
+    case ExploreEventKind::scan_stop: return "scan_stop";
     case ExploreEventKind::stall: return "stall";
     case ExploreEventKind::look: return "look";
     case ExploreEventKind::contacts_cleared: return "contacts_cleared";

@@ -16,10 +16,24 @@ constexpr double kPanReached_rad = 0.02;
 constexpr double kProgressStep_m = 0.1;
 // The point ahead of the robot checked before moving forward.
 constexpr double kAheadCheck_m = 0.15;
+// Scan points this far inside the robot's rim where it stands are under it (a person who
+// walked into the robot), not something it drives into: the grid's rule uses a cell.
+constexpr double kScanGuardDeep_m = 0.1;
 // Facing the plan's next waypoint: within this angle of it (at 8 deg/s a 20 Hz drive tick turns 0.4 deg).
 constexpr double kFacingPlan_rad = 0.05;
 // Goals tried per tick when planning to the best ones fails.
 constexpr int kGoalAttemptsPerTick = 4;
+
+// A cell or point the disc already overlaps where the robot stands does not stop it, unless
+// the move goes deeper into it (a grazed obstacle: pushing on would be a collision); those
+// deep under the robot are traces of a person who walked into it (NavigationMap ignores them).
+bool move_touches(const Eigen::Vector2d& obstacle, const Eigen::Vector2d& centre, const Eigen::Vector2d& robot,
+                         double radius, double deep) {
+  const double ahead = (obstacle - centre).norm();
+  if (ahead >= radius) return false;
+  const double now = (obstacle - robot).norm();
+  return now >= radius || (now >= deep && ahead < now);
+}
 
 Eigen::Vector2d position_of(const core::Pose2& pose) { return {pose.x, pose.y}; }
 
@@ -501,10 +515,12 @@ void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
   // The current grid, with the contact cells when there are any (stamped at the last rebuild,
   // which follows every grid update).
   const GridView& grid = planning_on_copy_ ? planning_grid_ : input.grid;
-  if (follow.command.linear_mps > 0.0 && !stretch_is_clear(grid, input.pose, input.time_s)) {
-    if (turn_to_face_plan(grid, input.pose, input.time_s, output)) return;
+  const Blocked blocked = follow.command.linear_mps > 0.0 ? stretch_blocked(grid, input) : Blocked::no;
+  if (blocked != Blocked::no) {
+    if (turn_to_face_plan(grid, input, output)) return;
     ++counters_.safety_stops;
-    note(ExploreEventKind::safety_stop, input);
+    if (blocked == Blocked::by_scan) ++counters_.scan_guard_stops;
+    note(blocked == Blocked::by_scan ? ExploreEventKind::scan_stop : ExploreEventKind::safety_stop, input);
     stop_and_look(input, output, follow.command.angular_rad_s);
     return;
   }
@@ -515,14 +531,15 @@ void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
 // itself keeps clear (A* checks the disc on the plan's cells only). Before calling the way
 // blocked: when the point just ahead towards the plan's next waypoint is clear, turn in place
 // to face it (the follower then drives on from a heading along the plan). True while turning.
-bool Explorer::turn_to_face_plan(const GridView& grid, const core::Pose2& pose, double time_s, ExploreOutput& output) {
+bool Explorer::turn_to_face_plan(const GridView& grid, const ExploreInput& input, ExploreOutput& output) {
+  const core::Pose2& pose = input.pose;
   const Eigen::Vector2d robot = position_of(pose);
   for (std::size_t k = follower_.progress(); k < plan_.waypoints.size(); ++k) {
     const Eigen::Vector2d towards = plan_.waypoints[k] - robot;
     if (towards.norm() < kAheadCheck_m) continue;
     const double heading_error = core::wrap_angle(std::atan2(towards.y(), towards.x()) - pose.theta);
     if (std::abs(heading_error) < kFacingPlan_rad) return false;  // already facing it: blocked
-    if (!disc_is_clear(grid, robot + kAheadCheck_m * towards.normalized(), robot, time_s)) return false;
+    if (disc_blocked(grid, robot + kAheadCheck_m * towards.normalized(), robot, input) != Blocked::no) return false;
     output.drive.angular_rad_s = std::copysign(params_.max_turn_rate_rad_s, heading_error);
     ++counters_.turns_to_face_plan;
     return true;
@@ -561,7 +578,7 @@ bool Explorer::back_off_step(const ExploreInput& input, ExploreOutput& output) {
   const GridView& grid = planning_on_copy_ ? planning_grid_ : input.grid;
   const bool done = (robot - back_off_from_).norm() >= distance ||
                     input.time_s - back_off_start_s_ > 2.0 * distance / params_.max_speed_mps ||
-                    !disc_is_clear(grid, behind, robot, input.time_s);
+                    disc_blocked(grid, behind, robot, input) != Blocked::no;
   if (done) {
     backing_off_ = false;
     return false;
@@ -570,8 +587,15 @@ bool Explorer::back_off_step(const ExploreInput& input, ExploreOutput& output) {
   return true;
 }
 
-bool Explorer::disc_is_clear(const GridView& grid, const Eigen::Vector2d& centre, const Eigen::Vector2d& robot,
-                             double time_s) const {
+Explorer::Blocked Explorer::disc_blocked(const GridView& grid, const Eigen::Vector2d& centre,
+                                         const Eigen::Vector2d& robot, const ExploreInput& input) const {
+  if (grid_blocks_disc(grid, centre, robot, input.time_s)) return Blocked::by_grid;
+  if (scan_blocks_disc(input.seen, centre, robot, input.time_s)) return Blocked::by_scan;
+  return Blocked::no;
+}
+
+bool Explorer::grid_blocks_disc(const GridView& grid, const Eigen::Vector2d& centre, const Eigen::Vector2d& robot,
+                                double time_s) const {
   const double deep = std::max(0.0, params_.robot_radius_m - grid.resolution_m);
   const double widest = params_.robot_radius_m + std::max(0.0, traces_.margin_m());
   const int reach = static_cast<int>(std::ceil(widest / grid.resolution_m)) + 1;
@@ -579,25 +603,34 @@ bool Explorer::disc_is_clear(const GridView& grid, const Eigen::Vector2d& centre
   for (int y = middle.y() - reach; y <= middle.y() + reach; ++y) {
     for (int x = middle.x() - reach; x <= middle.x() + reach; ++x) {
       if (!grid.contains(x, y) || grid.at(x, y) != CellState::occupied) continue;
-      const Eigen::Vector2d cell = grid.center(x, y);
-      const double ahead = (cell - centre).norm();
       const double radius = params_.robot_radius_m + (traces_.fresh(grid, x, y, time_s) ? traces_.margin_m() : 0.0);
-      if (ahead >= radius) continue;
-      // A cell the disc already overlaps where it stands does not stop it, unless the move
-      // goes deeper into it (a grazed obstacle: pushing on would be a collision); cells deep
-      // under the robot are traces of a person who walked into it (NavigationMap ignores them).
-      const double now = (cell - robot).norm();
-      if (now >= radius) return false;
-      if (now >= deep && ahead < now) return false;
+      if (move_touches(grid.center(x, y), centre, robot, radius, deep)) return true;
     }
   }
-  return true;
+  return false;
 }
 
-bool Explorer::stretch_is_clear(const GridView& grid, const core::Pose2& pose, double time_s) const {
+// The latest scan's obstacles at camera height: scan_guard_min_points of them inside the disc,
+// so that a few stray matches do not stop the robot.
+bool Explorer::scan_blocks_disc(const SeenObstacles& seen, const Eigen::Vector2d& centre, const Eigen::Vector2d& robot,
+                                double time_s) const {
+  const int needed = params_.explore.scan_guard_min_points;
+  if (needed <= 0 || seen.count == 0 || time_s - seen.time_s > params_.explore.scan_guard_max_age_s) return false;
+  const double radius = params_.robot_radius_m;
+  const double deep = std::max(0.0, radius - kScanGuardDeep_m);
+  int inside = 0;
+  for (std::size_t i = 0; i < seen.count; ++i) {
+    if (move_touches(seen.points[i], centre, robot, radius, deep) && ++inside >= needed) return true;
+  }
+  return false;
+}
+
+Explorer::Blocked Explorer::stretch_blocked(const GridView& grid, const ExploreInput& input) const {
+  const core::Pose2& pose = input.pose;
   const Eigen::Vector2d robot = position_of(pose);
   const Eigen::Vector2d ahead = robot + kAheadCheck_m * Eigen::Vector2d(std::cos(pose.theta), std::sin(pose.theta));
-  if (!disc_is_clear(grid, ahead, robot, time_s)) return false;
+  const Blocked at_ahead = disc_blocked(grid, ahead, robot, input);
+  if (at_ahead != Blocked::no) return at_ahead;
   double travelled = 0.0;
   Eigen::Vector2d previous = robot;
   for (std::size_t k = follower_.progress(); k < plan_.waypoints.size(); ++k) {
@@ -607,9 +640,10 @@ bool Explorer::stretch_is_clear(const GridView& grid, const core::Pose2& pose, d
     // A waypoint this near is where the robot stands (the centre of its own cell), no move:
     // the point ahead stands for it.
     if ((plan_.waypoints[k] - robot).norm() < kAheadCheck_m) continue;
-    if (!disc_is_clear(grid, plan_.waypoints[k], robot, time_s)) return false;
+    const Blocked at_waypoint = disc_blocked(grid, plan_.waypoints[k], robot, input);
+    if (at_waypoint != Blocked::no) return at_waypoint;
   }
-  return true;
+  return Blocked::no;
 }
 
 }  // namespace stereoscout::explore

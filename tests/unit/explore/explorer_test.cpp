@@ -292,6 +292,66 @@ TEST(Explorer, StopsBeforeAnOccupiedCellAheadEvenBeforeTheMapIsRebuilt) {
   for (const Eigen::Vector2i& cell : explorer.plan().cells) EXPECT_NE(cell, Eigen::Vector2i(19, 30));
 }
 
+// What the latest scan saw at the camera's height stops the robot before the grid holds it: a
+// person walking towards it is in the scan at once, and in the grid only some updates later.
+struct ScanGuardCase {
+  int min_points = 8;
+  int points = 20;
+  double ahead_m = 0.55;     // the person's centre, straight ahead of the robot
+  double scan_age_s = 0.05;  // since the scan's pair was captured
+};
+
+struct ScanGuardResult {
+  ExploreOutput output;
+  ExploreCounters counters;
+  ExploreEventKind last_event = ExploreEventKind::goal_chosen;
+};
+
+ScanGuardResult drive_past_seen_person(const ScanGuardCase& scene_case) {
+  Corridor scene;
+  ExploreParams params = no_look_params(100, 60);
+  params.explore.scan_guard_min_points = scene_case.min_points;
+  Explorer explorer(params);
+  const ExploreOutput first = explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.0, true));
+  EXPECT_GT(first.drive.linear_mps, 0.0);
+  // The near half of a person of radius 0.25 m, as the scan's columns see them.
+  std::vector<Eigen::Vector2d> person;
+  for (int i = 0; i < scene_case.points; ++i) {
+    const double angle = M_PI * (0.5 + static_cast<double>(i) / std::max(1, scene_case.points - 1));
+    person.emplace_back(1.5 + scene_case.ahead_m + 0.25 * std::cos(angle), 3.0 + 0.25 * std::sin(angle));
+  }
+  ExploreInput input = input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.05, false);
+  input.seen = SeenObstacles{person.data(), person.size(), 0.05 - scene_case.scan_age_s};
+  ScanGuardResult result;
+  result.output = explorer.step(input);
+  result.counters = explorer.counters();
+  result.last_event = explorer.journal()[explorer.journal().size() - 1].kind;
+  return result;
+}
+
+TEST(Explorer, StopsForAPersonTheLatestScanSawBeforeTheGridHoldsThem) {
+  const ScanGuardResult seen = drive_past_seen_person({});
+  EXPECT_EQ(seen.output.drive.linear_mps, 0.0);
+  EXPECT_EQ(seen.counters.safety_stops, 1U);
+  EXPECT_EQ(seen.counters.scan_guard_stops, 1U);
+  EXPECT_EQ(seen.last_event, ExploreEventKind::scan_stop);
+  // Fewer points than scan_guard_min_points (stray matches), an old scan, the guard off, a
+  // or a person beyond the checked stretch: it drives on.
+  ScanGuardCase stray;
+  stray.points = 7;
+  ScanGuardCase old_scan;
+  old_scan.scan_age_s = 2.5;
+  ScanGuardCase off;
+  off.min_points = 0;
+  ScanGuardCase far;
+  far.ahead_m = 1.2;
+  for (const ScanGuardCase& scene_case : {stray, old_scan, off, far}) {
+    const ScanGuardResult result = drive_past_seen_person(scene_case);
+    EXPECT_GT(result.output.drive.linear_mps, 0.0) << scene_case.points << " points " << scene_case.ahead_m << " m ahead";
+    EXPECT_EQ(result.counters.safety_stops, 0U);
+  }
+}
+
 // A surface the grid does not hold (a blank wall: no disparity, its cells stay free or
 // unknown) stops the robot: it commands forward motion and the pose stands still. The
 // explorer notices within two stall windows, keeps the cell it pushes against as occupied for

@@ -94,6 +94,7 @@ Stack::Stack(const core::SystemConfig& config, const StackOptions& options, cons
       stopwatch_(stopwatch),
       observations_(static_cast<std::size_t>(config.vision.max_features)),
       live_nodes_(static_cast<std::size_t>(filter_config_for(config.filter, options.localization).particle_capacity)),
+      seen_obstacles_(static_cast<std::size_t>(config.camera.width_px)),
       odometry_history_(kOdometryHistory),
       update_records_(records_for(options.max_time_s, config.budgets.tasks[3].rate_hz)),
       odometry_path_(records_for(options.max_time_s, config.robot.odometry_rate_hz)),
@@ -365,10 +366,22 @@ core::Status Stack::observation_update() {
   grid_->record_scan(index, scan_);
   pose_at_update_ = filter_->ml_pose();
   odometry_at_update_ = odometry_at_frame;
+  keep_seen_obstacles(frame_ns);
   update_records_.push_back(UpdateRecord{frame_ns, index, odometry_at_frame, frame_truth_, frame_has_truth_});
   rollup_due_ = true;
   ++counters_.updates;
   return core::Status::success();
+}
+
+// The scan's obstacles at the camera's height, placed with the pose the grid uses for this
+// scan, for the explorer's safety check (explore::SeenObstacles).
+void Stack::keep_seen_obstacles(std::int64_t frame_ns) {
+  seen_obstacles_.clear();
+  seen_obstacles_time_s_ = static_cast<double>(frame_ns - start_ns_) * 1e-9;
+  for (const core::DepthScanColumn& column : scan_.columns) {
+    if (column.kind != core::DepthScanColumn::Kind::obstacle || !column.obstacle_at_camera_height) continue;
+    seen_obstacles_.push_back(pose_at_update_.transform_point(Eigen::Vector2d(column.x_robot_m, column.y_robot_m)));
+  }
 }
 
 core::Status Stack::grid_rollup() {
@@ -396,6 +409,7 @@ core::Status Stack::step_explorer(bool grid_updated) {
   input.pose = current_pose();
   input.pan_rad = pan_rad_;
   input.grid = view_;
+  input.seen = explore::SeenObstacles{seen_obstacles_.data(), seen_obstacles_.size(), seen_obstacles_time_s_};
   input.grid_updated = grid_updated;
   input.emergency_stop = emergency_stop_;
   const explore::ExploreOutput output = explorer_->step(input);

@@ -30,6 +30,7 @@ enum class ExploreEventKind : std::uint8_t {
   goal_failed,       // the goal is given up (after no_plan, stuck or goal_timeout)
   goal_blacklisted,  // ... for good: it failed goal_failures_before_blacklist times
   safety_stop,       // the next stretch would touch an occupied cell
+  scan_stop,         // ... the grid clear, but the latest scan saw an obstacle there (scan_guard_min_points)
   stall,             // forward motion commanded, none made: a contact
   look,              // a 360-degree look begins
   contacts_cleared,  // before concluding "explored" or "no way back"

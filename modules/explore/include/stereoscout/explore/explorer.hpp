@@ -18,7 +18,9 @@
 // forward motion the next stretch of the plan (and the point just ahead of the robot) is
 // checked against the cells the current grid holds as occupied, and the robot stops if the
 // disc would touch one it does not already touch (optionally keeping fresh_obstacle_margin_m
-// more from cells that just turned occupied where the floor was free: trace_memory.hpp).
+// more from cells that just turned occupied where the floor was free: trace_memory.hpp), or
+// if it would touch scan_guard_min_points of the obstacles the latest scan saw at the
+// camera's height (a person walking in, whom the grid holds only some updates later).
 // If facing the plan's next waypoint would clear the way (pure pursuit cut a corner beside an
 // obstacle), it turns in place to face it instead. Otherwise, with pan_at_goal, it looks around
 // (a standing robot makes no observation update, so nothing would clear a person's trace)
@@ -48,6 +50,7 @@ struct ExploreInput {
   core::Pose2 pose;       // map frame: the ML particle's pose (ground truth in simulation tests)
   double pan_rad = 0.0;   // current angle of the pan unit
   GridView grid;          // current grid; must stay valid during the call only
+  SeenObstacles seen;     // the latest scan's obstacles at camera height (scan_guard_min_points)
   bool grid_updated = false;    // an observation update changed the grid since the last call
   bool emergency_stop = false;  // from the Gpio shim
 };
@@ -76,6 +79,7 @@ struct ExploreCounters {
   std::uint64_t stuck = 0;
   std::uint64_t goal_timeouts = 0;    // pursued longer than goal_time_factor allows
   std::uint64_t safety_stops = 0;
+  std::uint64_t scan_guard_stops = 0;  // ... of them for the latest scan's obstacles, the grid clear there
   std::uint64_t turns_to_face_plan = 0;  // ticks turning to face the plan instead of a safety stop
   std::uint64_t stalls = 0;            // forward motion commanded, none made: a contact
   std::uint64_t emergency_stop_ticks = 0;
@@ -133,10 +137,15 @@ class Explorer {
   void drive_step(const ExploreInput& input, ExploreOutput& output);
   void stop_and_look(const ExploreInput& input, ExploreOutput& output, double turn_rad_s);
   bool back_off_step(const ExploreInput& input, ExploreOutput& output);
-  bool stretch_is_clear(const GridView& grid, const core::Pose2& pose, double time_s) const;
-  bool turn_to_face_plan(const GridView& grid, const core::Pose2& pose, double time_s, ExploreOutput& output);
-  bool disc_is_clear(const GridView& grid, const Eigen::Vector2d& centre, const Eigen::Vector2d& robot,
-                     double time_s) const;
+  enum class Blocked : std::uint8_t { no, by_grid, by_scan };
+  Blocked stretch_blocked(const GridView& grid, const ExploreInput& input) const;
+  bool turn_to_face_plan(const GridView& grid, const ExploreInput& input, ExploreOutput& output);
+  Blocked disc_blocked(const GridView& grid, const Eigen::Vector2d& centre, const Eigen::Vector2d& robot,
+                       const ExploreInput& input) const;
+  bool grid_blocks_disc(const GridView& grid, const Eigen::Vector2d& centre, const Eigen::Vector2d& robot,
+                        double time_s) const;
+  bool scan_blocks_disc(const SeenObstacles& seen, const Eigen::Vector2d& centre, const Eigen::Vector2d& robot,
+                        double time_s) const;
   Eigen::Vector2i cell_of(const core::Pose2& pose) const;
   void note(ExploreEventKind kind, const ExploreInput& input);
 

@@ -176,6 +176,7 @@ class Stack {
   core::Status capture();
   core::Status odometry();
   core::Status observation_update();
+  void keep_seen_obstacles(std::int64_t frame_ns);
   core::Status grid_rollup();
   core::Status replan();
   core::Status step_explorer(bool grid_updated);
@@ -201,6 +202,8 @@ class Stack {
   core::FixedVector<core::LandmarkObservation> observations_;
   core::FixedVector<slam::TrajectoryNodeHandle> live_nodes_;
   core::DepthScan scan_;
+  core::FixedVector<Eigen::Vector2d> seen_obstacles_;  // the last scan's obstacles at camera height, map frame
+  double seen_obstacles_time_s_ = 0.0;
   std::vector<occupancy::CellState> cells_;  // the ML grid classified, the explorer's view
   std::vector<std::uint8_t> in_view_;        // the ML grid's in-view marks, same layout
   explore::GridView view_;
