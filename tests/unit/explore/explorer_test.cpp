@@ -299,6 +299,7 @@ struct ScanGuardCase {
   int points = 20;
   double ahead_m = 0.55;     // the person's centre, straight ahead of the robot
   double scan_age_s = 0.05;  // since the scan's pair was captured
+  bool wall_in_grid = false;  // the grid holds occupied cells one cell behind the points
 };
 
 struct ScanGuardResult {
@@ -320,6 +321,12 @@ ScanGuardResult drive_past_seen_person(const ScanGuardCase& scene_case) {
     const double angle = M_PI * (0.5 + static_cast<double>(i) / std::max(1, scene_case.points - 1));
     person.emplace_back(1.5 + scene_case.ahead_m + 0.25 * std::cos(angle), 3.0 + 0.25 * std::sin(angle));
   }
+  if (scene_case.wall_in_grid) {
+    for (const Eigen::Vector2d& point : person) {
+      const Eigen::Vector2i cell = scene.grid.view().cell_of(point);
+      scene.grid.set(cell.x() + 1, cell.y(), CellState::occupied);
+    }
+  }
   ExploreInput input = input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.05, false);
   input.seen = SeenObstacles{person.data(), person.size(), 0.05 - scene_case.scan_age_s};
   ScanGuardResult result;
@@ -330,11 +337,17 @@ ScanGuardResult drive_past_seen_person(const ScanGuardCase& scene_case) {
 }
 
 TEST(Explorer, StopsForAPersonTheLatestScanSawBeforeTheGridHoldsThem) {
-  const ScanGuardResult seen = drive_past_seen_person({});
-  EXPECT_EQ(seen.output.drive.linear_mps, 0.0);
-  EXPECT_EQ(seen.counters.safety_stops, 1U);
-  EXPECT_EQ(seen.counters.scan_guard_stops, 1U);
-  EXPECT_EQ(seen.last_event, ExploreEventKind::scan_stop);
+  // 0.55 m ahead (within the grid's 0.5 m check), and 1.2 m ahead (beyond it, within the
+  // scan guard's 0.8 m: the matcher does not see the person once nearer than 0.73 m).
+  ScanGuardCase beyond_grid_check;
+  beyond_grid_check.ahead_m = 1.2;
+  for (const ScanGuardCase& scene_case : {ScanGuardCase{}, beyond_grid_check}) {
+    const ScanGuardResult seen = drive_past_seen_person(scene_case);
+    EXPECT_EQ(seen.output.drive.linear_mps, 0.0) << scene_case.ahead_m << " m ahead";
+    EXPECT_EQ(seen.counters.safety_stops, 1U);
+    EXPECT_EQ(seen.counters.scan_guard_stops, 1U);
+    EXPECT_EQ(seen.last_event, ExploreEventKind::scan_stop);
+  }
   // Fewer points than scan_guard_min_points (stray matches), an old scan, the guard off, a
   // or a person beyond the checked stretch: it drives on.
   ScanGuardCase stray;
@@ -344,8 +357,11 @@ TEST(Explorer, StopsForAPersonTheLatestScanSawBeforeTheGridHoldsThem) {
   ScanGuardCase off;
   off.min_points = 0;
   ScanGuardCase far;
-  far.ahead_m = 1.2;
-  for (const ScanGuardCase& scene_case : {stray, old_scan, off, far}) {
+  far.ahead_m = 1.5;
+  ScanGuardCase wall;
+  wall.ahead_m = 1.2;
+  wall.wall_in_grid = true;
+  for (const ScanGuardCase& scene_case : {stray, old_scan, off, far, wall}) {
     const ScanGuardResult result = drive_past_seen_person(scene_case);
     EXPECT_GT(result.output.drive.linear_mps, 0.0) << scene_case.points << " points " << scene_case.ahead_m << " m ahead";
     EXPECT_EQ(result.counters.safety_stops, 0U);

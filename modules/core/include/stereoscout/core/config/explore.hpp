@@ -31,6 +31,7 @@ struct ExploreConfig {
   double safety_check_distance_m = 0.5;
   int scan_guard_min_points = 8;
   double scan_guard_max_age_s = 2.0;
+  double scan_guard_distance_m = 0.8;
   double fresh_obstacle_margin_m = 0.0;
   double fresh_obstacle_hold_s = 3.0;
   double trace_forget_after_s = 10.0;
@@ -80,7 +81,8 @@ inline void describe(ConfigVisitor& v, ExploreConfig& c) {
   v.number("lookahead_m", c.lookahead_m, {0.05, 5.0, "m", "Pure-pursuit lookahead distance of the path follower."});
   v.number("turn_in_place_deg", c.turn_in_place_deg, {1.0, 180.0, "deg", "The follower turns in place while the lookahead point is farther off the heading than this."});
   v.number("safety_check_distance_m", c.safety_check_distance_m, {0.05, 5.0, "m", "Before every command the next stretch of path this long is checked against occupied cells."});
-  v.integer_field("scan_guard_min_points", c.scan_guard_min_points, {0, 100000, "columns", "The safety check also stops the robot when at least this many columns of the latest scan saw an obstacle at the camera's height (a person, a textured wall) inside the robot's disc along the stretch it checks: the grid holds an obstacle where it saw free floor only after several updates, and a person walking towards the robot is there first. A person 1 m away fills a few hundred columns; a few stray matches do not stop the robot. 0 = off. Not in the paper."});
+  v.integer_field("scan_guard_min_points", c.scan_guard_min_points, {0, 100000, "columns", "The safety check also stops the robot when at least this many columns of the latest scan saw an obstacle at the camera's height standing on floor the grid holds free (no occupied cell within one cell: not a wall the grid already has) inside the robot's disc ahead, along its heading and along the plan, within scan_guard_distance_m. The grid turns a cell it saw free many times occupied only after several updates, and a person walking towards the robot is there first. A person 1 m away fills a couple of hundred columns; a few stray matches do not stop the robot. 0 = off. Not in the paper."});
+  v.number("scan_guard_distance_m", c.scan_guard_distance_m, {0.0, 5.0, "m", "How far ahead the scan_guard_min_points check looks, along the heading and along the plan. The dense matcher sees nothing nearer the camera than focal * baseline / dense_num_disparities (0.63 m on the default camera, 0.73 m from the robot's centre), and an update follows only every update_min_translation_m of travel, so the check must reach beyond that for a walker to be in view at one update at least."});
   v.number("scan_guard_max_age_s", c.scan_guard_max_age_s, {0.0, 100.0, "s", "The scan_guard_min_points check uses the latest scan only while it is younger than this: updates follow motion, so a robot standing still keeps its last scan."});
   v.number("fresh_obstacle_margin_m", c.fresh_obstacle_margin_m, {0.0, 2.0, "m", "The safety check keeps this much more clearance from cells that turned from free to occupied within fresh_obstacle_hold_s (a person walking at 0.5 m/s moves 0.3 m between two updates). 0 = off, the default: measured at 0.3 m it did not reduce contacts with people (docs/results.md); not in the paper."});
   v.number("fresh_obstacle_hold_s", c.fresh_obstacle_hold_s, {0.0, 60.0, "s", "How long a cell that turned from free to occupied counts as fresh for fresh_obstacle_margin_m."});
