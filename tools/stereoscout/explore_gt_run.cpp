@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <vector>
 
 #include <opencv2/core.hpp>
 
@@ -71,6 +72,8 @@ ExploreGtResult run_explore_gt(const core::SystemConfig& config, const host_sim:
   vision::ObstacleScanner scanner(scan_params, vision::calibration_from_config(config.camera), mount);
   core::DepthScan scan;
   scanner.allocate(scan);
+  std::vector<Eigen::Vector2d> seen_points(static_cast<std::size_t>(config.camera.width_px));
+  explore::SeenObstacles seen{seen_points.data(), 0, 0.0};
   cv::Mat left(config.camera.height_px, config.camera.width_px, CV_8UC1);
   cv::Mat right(config.camera.height_px, config.camera.width_px, CV_8UC1);
   cv::Mat depth(config.camera.height_px, config.camera.width_px, CV_32FC1);
@@ -110,6 +113,8 @@ ExploreGtResult run_explore_gt(const core::SystemConfig& config, const host_sim:
       disparity_from_depth(depth, focal_baseline, scan_params, disparity);
       scanner.compute(disparity, simulator.pan_rad(), simulator.time_ns(), scan);
       grid.insert(scan, pose);
+      seen.count = explore::seen_obstacles_from_scan(scan, pose, seen_points.data(), seen_points.size());
+      seen.time_s = simulator.time_s();
       occupancy::classify_cells(grid, thresholds, cells.data(), in_view.data());
       last_update_pose = pose;
       last_update_camera_heading = camera_heading;
@@ -126,6 +131,7 @@ ExploreGtResult run_explore_gt(const core::SystemConfig& config, const host_sim:
     input.pose = pose;
     input.pan_rad = simulator.pan_rad();
     input.grid = view;
+    input.seen = seen;
     input.grid_updated = update_due;
     const explore::ExploreOutput output = explorer.step(input);
     if (!exploration_over && explorer.finish_reason() != explore::FinishReason::none) {

@@ -376,12 +376,9 @@ core::Status Stack::observation_update() {
 // The scan's obstacles at the camera's height, placed with the pose the grid uses for this
 // scan, for the explorer's safety check (explore::SeenObstacles).
 void Stack::keep_seen_obstacles(std::int64_t frame_ns) {
-  seen_obstacles_.clear();
-  seen_obstacles_time_s_ = static_cast<double>(frame_ns - start_ns_) * 1e-9;
-  for (const core::DepthScanColumn& column : scan_.columns) {
-    if (column.kind != core::DepthScanColumn::Kind::obstacle || !column.obstacle_at_camera_height) continue;
-    seen_obstacles_.push_back(pose_at_update_.transform_point(Eigen::Vector2d(column.x_robot_m, column.y_robot_m)));
-  }
+  seen_.points = seen_obstacles_.data();
+  seen_.count = explore::seen_obstacles_from_scan(scan_, pose_at_update_, seen_obstacles_.data(), seen_obstacles_.size());
+  seen_.time_s = static_cast<double>(frame_ns - start_ns_) * 1e-9;
 }
 
 core::Status Stack::grid_rollup() {
@@ -409,7 +406,7 @@ core::Status Stack::step_explorer(bool grid_updated) {
   input.pose = current_pose();
   input.pan_rad = pan_rad_;
   input.grid = view_;
-  input.seen = explore::SeenObstacles{seen_obstacles_.data(), seen_obstacles_.size(), seen_obstacles_time_s_};
+  input.seen = seen_;
   input.grid_updated = grid_updated;
   input.emergency_stop = emergency_stop_;
   const explore::ExploreOutput output = explorer_->step(input);

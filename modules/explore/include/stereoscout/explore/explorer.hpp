@@ -42,6 +42,7 @@
 #include "stereoscout/explore/navigation_map.hpp"
 #include "stereoscout/explore/path_follower.hpp"
 #include "stereoscout/explore/path_planner.hpp"
+#include "stereoscout/explore/seen_obstacles.hpp"
 #include "stereoscout/explore/trace_memory.hpp"
 
 namespace stereoscout::explore {

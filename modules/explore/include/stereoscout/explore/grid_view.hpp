@@ -47,18 +47,6 @@ struct GridView {
   }
 };
 
-// What the latest obstacle scan saw standing at the camera's height (a person, a textured wall
-// or cupboard; not the blank-wall rules' guesses), as points in the map frame placed with the
-// pose the grid used for that scan. The safety check stops for them as well as for the grid's
-// occupied cells: the grid turns a cell it saw free many times occupied only after several
-// updates (log-odds clamped at -4, +0.85 a hit), and a walking person covers 1-2 m meanwhile.
-// Must stay valid during the call only; count 0 when there is no scan.
-struct SeenObstacles {
-  const Eigen::Vector2d* points = nullptr;
-  std::size_t count = 0;
-  double time_s = 0.0;  // when the scan's stereo pair was captured
-};
-
 // Visits the cells a ray from the centre of cell (x, y) along the unit vector `direction`
 // crosses within length_cells, in order and each once, the start cell excepted. It marches
 // in quarter-cell steps, so no cell the ray crosses is skipped (corners grazed aside). Stops

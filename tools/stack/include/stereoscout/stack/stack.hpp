@@ -202,8 +202,9 @@ class Stack {
   core::FixedVector<core::LandmarkObservation> observations_;
   core::FixedVector<slam::TrajectoryNodeHandle> live_nodes_;
   core::DepthScan scan_;
-  core::FixedVector<Eigen::Vector2d> seen_obstacles_;  // the last scan's obstacles at camera height, map frame
-  double seen_obstacles_time_s_ = 0.0;
+  std::vector<Eigen::Vector2d> seen_obstacles_;  // sized once: the last scan's obstacles at camera height, map frame
+  explore::SeenObstacles seen_;                    // the used part of it
+
   std::vector<occupancy::CellState> cells_;  // the ML grid classified, the explorer's view
   std::vector<std::uint8_t> in_view_;        // the ML grid's in-view marks, same layout
   explore::GridView view_;
