@@ -37,15 +37,6 @@ bool move_touches(const Eigen::Vector2d& obstacle, const Eigen::Vector2d& centre
 
 Eigen::Vector2d position_of(const core::Pose2& pose) { return {pose.x, pose.y}; }
 
-bool occupied_next_to(const GridView& grid, const Eigen::Vector2i& cell) {
-  for (int y = cell.y() - 1; y <= cell.y() + 1; ++y) {
-    for (int x = cell.x() - 1; x <= cell.x() + 1; ++x) {
-      if (grid.contains(x, y) && grid.at(x, y) == CellState::occupied) return true;
-    }
-  }
-  return false;
-}
-
 // The part of the camera's view at this update in which a cell that stays occupied is seen
 // standing (trace_memory.hpp).
 CameraWedge camera_wedge(const ExploreParams& params, const ExploreInput& input) {
@@ -526,9 +517,7 @@ void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
   const GridView& grid = planning_on_copy_ ? planning_grid_ : input.grid;
   const Blocked blocked = follow.command.linear_mps > 0.0 ? stretch_blocked(grid, input) : Blocked::no;
   if (blocked != Blocked::no) {
-    // Facing the plan helps where pure pursuit cut a corner beside a standing obstacle; the scan
-    // guard looks farther along the plan, so what it saw is still ahead after the turn.
-    if (blocked == Blocked::by_grid && turn_to_face_plan(grid, input, output)) return;
+    if (turn_to_face_plan(grid, input, output)) return;
     ++counters_.safety_stops;
     if (blocked == Blocked::by_scan) ++counters_.scan_guard_stops;
     note(blocked == Blocked::by_scan ? ExploreEventKind::scan_stop : ExploreEventKind::safety_stop, input);
@@ -601,7 +590,7 @@ bool Explorer::back_off_step(const ExploreInput& input, ExploreOutput& output) {
 Explorer::Blocked Explorer::disc_blocked(const GridView& grid, const Eigen::Vector2d& centre,
                                          const Eigen::Vector2d& robot, const ExploreInput& input) const {
   if (grid_blocks_disc(grid, centre, robot, input.time_s)) return Blocked::by_grid;
-  if (scan_guard_active(input) && scan_blocks_disc(grid, input.seen, centre, robot)) return Blocked::by_scan;
+  if (scan_guard_active(input) && scan_blocks_disc(input.seen, centre, robot)) return Blocked::by_scan;
   return Blocked::no;
 }
 
@@ -626,33 +615,34 @@ bool Explorer::scan_guard_active(const ExploreInput& input) const {
          input.time_s - input.seen.time_s <= params_.explore.scan_guard_max_age_s;
 }
 
-// The latest scan's obstacles at camera height on floor the grid holds free, with no occupied
-// cell next to it (a wall the grid has, placed a cell off by the pose error, is the grid's
-// check): scan_guard_min_points of them inside the disc, so that stray matches do not stop it.
-bool Explorer::scan_blocks_disc(const GridView& grid, const SeenObstacles& seen, const Eigen::Vector2d& centre,
+// The latest scan's obstacles at camera height: scan_guard_min_points of them inside the disc,
+// so that stray matches do not stop the robot. They are measured from the robot, so one inside
+// the disc along the plan is a real obstacle closer than the robot's radius to where it will
+// be, whatever the grid holds there (a walking person's lane is often occupied in it).
+bool Explorer::scan_blocks_disc(const SeenObstacles& seen, const Eigen::Vector2d& centre,
                                 const Eigen::Vector2d& robot) const {
   const double radius = params_.robot_radius_m;
   const double deep = std::max(0.0, radius - kScanGuardDeep_m);
   int inside = 0;
   for (std::size_t i = 0; i < seen.count; ++i) {
-    if (!move_touches(seen.points[i], centre, robot, radius, deep)) continue;
-    const Eigen::Vector2i cell = grid.cell_of(seen.points[i]);
-    if (!grid.contains(cell.x(), cell.y()) || grid.at(cell.x(), cell.y()) != CellState::free) continue;
-    if (occupied_next_to(grid, cell)) continue;
-    if (++inside >= params_.explore.scan_guard_min_points) return true;
+    if (move_touches(seen.points[i], centre, robot, radius, deep) && ++inside >= params_.explore.scan_guard_min_points) {
+      return true;
+    }
   }
   return false;
 }
 
-// The scan guard looks farther than the grid's check, along the heading as well as the plan:
-// the matcher sees nothing within 0.73 m of the robot's centre, and a walker closes 0.3-0.9 m
-// between two updates.
-bool Explorer::scan_blocks_stretch(const GridView& grid, const ExploreInput& input) const {
+// The scan guard looks farther than the grid's check, along the plan and along the heading
+// (pure pursuit cuts the plan's corners) but not past the plan's end (a goal faces a wall at
+// its safe distance): the matcher sees nothing within 0.73 m of the robot's centre, and a
+// walker closes 0.3-0.9 m between two updates.
+bool Explorer::scan_blocks_stretch(const ExploreInput& input) const {
   const Eigen::Vector2d robot = position_of(input.pose);
   const Eigen::Vector2d heading(std::cos(input.pose.theta), std::sin(input.pose.theta));
   const double reach = params_.explore.scan_guard_distance_m;
-  for (double ahead = kAheadCheck_m; ahead <= reach + 1e-9; ahead += kAheadCheck_m) {
-    if (scan_blocks_disc(grid, input.seen, robot + ahead * heading, robot)) return true;
+  const double heading_reach = std::min(reach, remaining_path_m(robot));
+  for (double ahead = kAheadCheck_m; ahead <= heading_reach + 1e-9; ahead += kAheadCheck_m) {
+    if (scan_blocks_disc(input.seen, robot + ahead * heading, robot)) return true;
   }
   double travelled = 0.0;
   Eigen::Vector2d previous = robot;
@@ -661,7 +651,7 @@ bool Explorer::scan_blocks_stretch(const GridView& grid, const ExploreInput& inp
     previous = plan_.waypoints[k];
     if (travelled > reach) break;
     if ((plan_.waypoints[k] - robot).norm() < kAheadCheck_m) continue;
-    if (scan_blocks_disc(grid, input.seen, plan_.waypoints[k], robot)) return true;
+    if (scan_blocks_disc(input.seen, plan_.waypoints[k], robot)) return true;
   }
   return false;
 }
@@ -681,7 +671,7 @@ Explorer::Blocked Explorer::stretch_blocked(const GridView& grid, const ExploreI
     if ((plan_.waypoints[k] - robot).norm() < kAheadCheck_m) continue;
     if (grid_blocks_disc(grid, plan_.waypoints[k], robot, input.time_s)) return Blocked::by_grid;
   }
-  if (scan_guard_active(input) && scan_blocks_stretch(grid, input)) return Blocked::by_scan;
+  if (scan_guard_active(input) && scan_blocks_stretch(input)) return Blocked::by_scan;
   return Blocked::no;
 }
 

@@ -19,9 +19,9 @@
 // checked against the cells the current grid holds as occupied, and the robot stops if the
 // disc would touch one it does not already touch (optionally keeping fresh_obstacle_margin_m
 // more from cells that just turned occupied where the floor was free: trace_memory.hpp), or
-// if within scan_guard_distance_m along its heading or the plan it would touch
-// scan_guard_min_points of the obstacles the latest scan saw at the camera's height on floor
-// the grid holds free (a person walking in, whom the grid holds only some updates later).
+// if within scan_guard_distance_m along the plan or its heading it would touch
+// scan_guard_min_points of the obstacles the latest scan saw at the camera's height (a person
+// walking in, whom the grid holds only some updates later).
 // If facing the plan's next waypoint would clear the way (pure pursuit cut a corner beside an
 // obstacle), it turns in place to face it instead. Otherwise, with pan_at_goal, it looks around
 // (a standing robot makes no observation update, so nothing would clear a person's trace)
@@ -146,10 +146,9 @@ class Explorer {
                        const ExploreInput& input) const;
   bool grid_blocks_disc(const GridView& grid, const Eigen::Vector2d& centre, const Eigen::Vector2d& robot,
                         double time_s) const;
-  bool scan_blocks_disc(const GridView& grid, const SeenObstacles& seen, const Eigen::Vector2d& centre,
-                        const Eigen::Vector2d& robot) const;
+  bool scan_blocks_disc(const SeenObstacles& seen, const Eigen::Vector2d& centre, const Eigen::Vector2d& robot) const;
   bool scan_guard_active(const ExploreInput& input) const;
-  bool scan_blocks_stretch(const GridView& grid, const ExploreInput& input) const;
+  bool scan_blocks_stretch(const ExploreInput& input) const;
   Eigen::Vector2i cell_of(const core::Pose2& pose) const;
   void note(ExploreEventKind kind, const ExploreInput& input);
 
