@@ -195,6 +195,27 @@ TEST_F(SimulatedLabView, NoPhantomObstaclesAroundTheStartPose) {
   EXPECT_EQ(near_obstacles, 0);
 }
 
+// A walker ahead (the lab's person 2 at t = 0, at (2, 12.5), the robot facing them from the
+// east): the scan sees them at the camera's height, which the explorer's scan guard uses,
+// down to about 1 m between the centres. Nearer, the person's surface is closer to the camera
+// than focal * baseline / dense_num_disparities (0.63 m) and the matcher finds nothing there,
+// so the guard must look farther than that (explore.scan_guard_distance_m).
+TEST_F(SimulatedLabView, AWalkerAheadIsSeenAtCameraHeightUntilNearerThanTheMatcherReaches) {
+  const Eigen::Vector2d person(2.0, 12.5);
+  auto person_columns_at_camera_height = [&](double centres_apart_m) {
+    look(person.x() + centres_apart_m, person.y(), 180.0, 0.0, 1);
+    int columns = 0;
+    for (const core::DepthScanColumn& column : scan_.columns) {
+      // Robot frame: the robot faces the person, who stands centres_apart_m straight ahead.
+      const double from_person = std::hypot(column.x_robot_m - centres_apart_m, column.y_robot_m);
+      if (column.kind == Kind::obstacle && column.obstacle_at_camera_height && from_person < 0.4) ++columns;
+    }
+    return columns;
+  };
+  for (const double apart_m : {2.0, 1.5, 1.0}) EXPECT_GE(person_columns_at_camera_height(apart_m), 100) << apart_m;
+  EXPECT_LE(person_columns_at_camera_height(0.6), 5);
+}
+
 // The office corridor's walls are blank (contrast 0.2: no disparity). Across the corridor,
 // along it and into an office door: no column may report free space through a wall. Seen at
 // an angle, a blank wall is an obstacle where the floor ends, a little short of it (no free-space
