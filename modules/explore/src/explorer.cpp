@@ -516,11 +516,15 @@ void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
   // which follows every grid update).
   const GridView& grid = planning_on_copy_ ? planning_grid_ : input.grid;
   const Blocked blocked = follow.command.linear_mps > 0.0 ? stretch_blocked(grid, input) : Blocked::no;
-  if (blocked != Blocked::no) {
-    if (turn_to_face_plan(grid, input, output)) return;
+  if (blocked != Blocked::no && turn_to_face_plan(grid, input, output)) return;
+  if (blocked == Blocked::by_scan) {
+    hold_for_scan(input);
+    return;
+  }
+  holding_for_scan_ = false;
+  if (blocked == Blocked::by_grid) {
     ++counters_.safety_stops;
-    if (blocked == Blocked::by_scan) ++counters_.scan_guard_stops;
-    note(blocked == Blocked::by_scan ? ExploreEventKind::scan_stop : ExploreEventKind::safety_stop, input);
+    note(ExploreEventKind::safety_stop, input);
     stop_and_look(input, output, follow.command.angular_rad_s);
     return;
   }
@@ -545,6 +549,17 @@ bool Explorer::turn_to_face_plan(const GridView& grid, const ExploreInput& input
     return true;
   }
   return false;
+}
+
+// What the scan guard saw is most likely a walker crossing: the robot stands still, without a
+// look (a 13 s look kept it standing in the walker's lane, and their passing cells boxed it
+// in: the lab, seed 2). A standing robot makes no update, so the hold ends when the scan is
+// scan_guard_max_age_s old; the next update, 0.07 m on, stops it again if they are still there.
+void Explorer::hold_for_scan(const ExploreInput& input) {
+  if (holding_for_scan_) return;
+  holding_for_scan_ = true;
+  ++counters_.scan_guard_stops;
+  note(ExploreEventKind::scan_stop, input);
 }
 
 // Stops, and replans from a rebuilt map on the next tick. With pan_at_goal it looks around

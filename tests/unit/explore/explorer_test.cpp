@@ -305,6 +305,8 @@ struct ScanGuardResult {
   ExploreOutput output;
   ExploreCounters counters;
   ExploreEventKind last_event = ExploreEventKind::goal_chosen;
+  double drives_on_at_s = -1.0;  // the same scan, no update since: when forward motion resumed
+  ExploreCounters counters_then;
 };
 
 ScanGuardResult drive_past_seen_person(const ScanGuardCase& scene_case) {
@@ -336,6 +338,11 @@ ScanGuardResult drive_past_seen_person(const ScanGuardCase& scene_case) {
   result.output = explorer.step(input);
   result.counters = explorer.counters();
   result.last_event = explorer.journal()[explorer.journal().size() - 1].kind;
+  for (double time = 0.1; time < 4.0 && result.drives_on_at_s < 0.0; time += 0.05) {
+    input.time_s = time;
+    if (explorer.step(input).drive.linear_mps > 0.0) result.drives_on_at_s = time;
+  }
+  result.counters_then = explorer.counters();
   return result;
 }
 
@@ -347,12 +354,18 @@ TEST(Explorer, StopsForAPersonTheLatestScanSawBeforeTheGridHoldsThem) {
   for (const ScanGuardCase& scene_case : {ScanGuardCase{}, beyond_grid_check}) {
     const ScanGuardResult seen = drive_past_seen_person(scene_case);
     EXPECT_EQ(seen.output.drive.linear_mps, 0.0) << scene_case.ahead_m << " m ahead";
-    EXPECT_EQ(seen.counters.safety_stops, 1U);
+    EXPECT_EQ(seen.output.state, ExploreState::drive);  // no look: it stands and waits
     EXPECT_EQ(seen.counters.scan_guard_stops, 1U);
+    EXPECT_EQ(seen.counters.safety_stops, 0U);
     EXPECT_EQ(seen.last_event, ExploreEventKind::scan_stop);
+    // A standing robot makes no update: it holds until the scan is scan_guard_max_age_s old
+    // (captured at 0 s), once, and drives on.
+    EXPECT_NEAR(seen.drives_on_at_s, 2.05, 0.06);
+    EXPECT_EQ(seen.counters_then.scan_guard_stops, 1U);
+    EXPECT_EQ(seen.counters_then.looks, 0U);
   }
-  // Fewer points than scan_guard_min_points (stray matches), an old scan, the guard off, a
-  // or a person beyond the checked stretch: it drives on.
+  // Fewer points than scan_guard_min_points (stray matches), an old scan, the guard off, or
+  // a person beyond the checked stretch: it drives on.
   ScanGuardCase stray;
   stray.points = 7;
   ScanGuardCase old_scan;

@@ -19,9 +19,9 @@
 // checked against the cells the current grid holds as occupied, and the robot stops if the
 // disc would touch one it does not already touch (optionally keeping fresh_obstacle_margin_m
 // more from cells that just turned occupied where the floor was free: trace_memory.hpp), or
-// if within scan_guard_distance_m along the plan or its heading it would touch
-// scan_guard_min_points of the obstacles the latest scan saw at the camera's height (a person
-// walking in, whom the grid holds only some updates later).
+// or, without a look, stands still while within scan_guard_distance_m along the plan or its
+// heading it would touch scan_guard_min_points of the obstacles the latest scan saw at the
+// camera's height (a person walking in, whom the grid holds only some updates later).
 // If facing the plan's next waypoint would clear the way (pure pursuit cut a corner beside an
 // obstacle), it turns in place to face it instead. Otherwise, with pan_at_goal, it looks around
 // (a standing robot makes no observation update, so nothing would clear a person's trace)
@@ -81,7 +81,7 @@ struct ExploreCounters {
   std::uint64_t stuck = 0;
   std::uint64_t goal_timeouts = 0;    // pursued longer than goal_time_factor allows
   std::uint64_t safety_stops = 0;
-  std::uint64_t scan_guard_stops = 0;  // ... of them for the latest scan's obstacles, the grid clear there
+  std::uint64_t scan_guard_stops = 0;  // holds for the latest scan's obstacles, the grid clear there (no look)
   std::uint64_t turns_to_face_plan = 0;  // ticks turning to face the plan instead of a safety stop
   std::uint64_t stalls = 0;            // forward motion commanded, none made: a contact
   std::uint64_t emergency_stop_ticks = 0;
@@ -138,6 +138,7 @@ class Explorer {
   void look_step(const ExploreInput& input, ExploreOutput& output);
   void drive_step(const ExploreInput& input, ExploreOutput& output);
   void stop_and_look(const ExploreInput& input, ExploreOutput& output, double turn_rad_s);
+  void hold_for_scan(const ExploreInput& input);
   bool back_off_step(const ExploreInput& input, ExploreOutput& output);
   enum class Blocked : std::uint8_t { no, by_grid, by_scan };
   Blocked stretch_blocked(const GridView& grid, const ExploreInput& input) const;
@@ -164,6 +165,7 @@ class Explorer {
   bool planning_on_copy_ = false;  // planning_grid_ is the contact memory's stamped copy
   bool crossing_traces_ = false;   // the navigation map holds a person's old traces free
   bool stalled_ = false;           // this tick
+  bool holding_for_scan_ = false;  // standing still for what the scan guard saw
   PathPlanner planner_;
   PathFollower follower_;
   Plan plan_;
