@@ -18,10 +18,11 @@
 // forward motion the next stretch of the plan (and the point just ahead of the robot) is
 // checked against the cells the current grid holds as occupied, and the robot stops if the
 // disc would touch one it does not already touch (optionally keeping fresh_obstacle_margin_m
-// more from cells that just turned occupied where the floor was free: trace_memory.hpp), or
-// or, without a look, stands still while within scan_guard_distance_m along the plan or its
-// heading it would touch scan_guard_min_points of the obstacles the latest scan saw at the
-// camera's height (a person walking in, whom the grid holds only some updates later).
+// more from cells that just turned occupied where the floor was free: trace_memory.hpp).
+// Optionally (scan_guard_min_points, off by default) it also stands still, without a look,
+// while within scan_guard_distance_m along the plan or its heading it would touch that many
+// of the obstacles the latest scan saw at the camera's height (a person walking in, whom the
+// grid holds only some updates later).
 // If facing the plan's next waypoint would clear the way (pure pursuit cut a corner beside an
 // obstacle), it turns in place to face it instead. Otherwise, with pan_at_goal, it looks around
 // (a standing robot makes no observation update, so nothing would clear a person's trace)
