@@ -13,9 +13,10 @@ namespace stereoscout::explore {
 
 // What the latest obstacle scan saw standing at the camera's height (a person, a textured wall
 // or cupboard; not the blank-wall rules' guesses), as points in the map frame placed with the
-// pose the grid used for that scan. The safety check stops for them as well as for the grid's
-// occupied cells: the grid turns a cell it saw free many times occupied only after several
-// updates (log-odds clamped at -4, +0.85 a hit), and a walking person covers 1-2 m meanwhile.
+// pose the grid used for that scan. With scan_guard_min_points the safety check holds the
+// robot for them as well as stopping it for the grid's occupied cells: the grid turns a cell
+// it saw free many times occupied only after several updates (log-odds clamped at -4, +0.85 a
+// hit), and a walking person covers 1-2 m meanwhile.
 // Must stay valid during the call only; count 0 when there is no scan.
 struct SeenObstacles {
   const Eigen::Vector2d* points = nullptr;
