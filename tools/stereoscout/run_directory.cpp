@@ -298,6 +298,7 @@ std::string report_json(const stack::Stack& stack, const core::SystemConfig& con
   if (context.has_collisions) {
     json.unsigned_integer("collisions", context.collisions)
         .unsigned_integer("collision_events", context.collision_events)
+        .unsigned_integer("collision_events_people", context.person_collision_events)
         .unsigned_integer("person_contacts", context.person_contacts);
     json.begin_array("collision_log");
     for (const auto& event : context.collision_log) {
@@ -307,7 +308,7 @@ std::string report_json(const stack::Stack& stack, const core::SystemConfig& con
     }
     json.end_array();
   } else {
-    json.null("collisions").null("collision_events").null("person_contacts");
+    json.null("collisions").null("collision_events").null("collision_events_people").null("person_contacts");
   }
   json.unsigned_integer("updates", stack.counters().updates)
       .unsigned_integer("landmarks", score.landmarks)

@@ -25,7 +25,10 @@ struct RunContext {
   bool has_collisions = false;                 // the simulator counts them
   std::uint64_t collisions = 0;
   std::uint64_t collision_events = 0;
-  std::vector<std::array<double, 4>> collision_log;  // the first contacts: time s, true x, y, theta
+  std::uint64_t person_collision_events = 0;   // those of them into a person
+  // The first contacts: time s, true x, y, theta, and the person run into (their index in the
+  // world's people) or -1 for a static obstacle.
+  std::vector<std::array<double, 5>> collision_log;
   std::uint64_t person_contacts = 0;
   double distance_m = 0.0;                     // driven (simulator), 0 if unknown
   double wall_time_s = 0.0;

@@ -47,8 +47,8 @@ void Simulator::command_pan(double pan_rad) {
   if (camera_.has_pan_unit && std::isfinite(pan_rad)) pan_target_rad_ = core::wrap_angle(pan_rad);
 }
 
-bool Simulator::collides(const Eigen::Vector2d& here, const Eigen::Vector2d& there) const {
-  if (obstacles_.disc_collides(there, robot_.radius_m)) return true;
+int Simulator::step_runs_into(const Eigen::Vector2d& here, const Eigen::Vector2d& there) const {
+  if (obstacles_.disc_collides(there, robot_.radius_m)) return kStaticObstacle;
   for (std::size_t i = 0; i < world_.people.size(); ++i) {
     // Ours only when the step makes a contact that standing still would not have: a contact
     // the person made (walking into the robot, overtaking it) lasts until they walk on. The
@@ -57,9 +57,9 @@ bool Simulator::collides(const Eigen::Vector2d& here, const Eigen::Vector2d& the
     if (person_in_contact_[i] != 0) continue;
     const Eigen::Vector2d person = world_.person_position(i, time_s());
     const double limit = robot_.radius_m + world_.people[i].radius;
-    if ((person - there).norm() < limit && (person - here).norm() >= limit) return true;
+    if ((person - there).norm() < limit && (person - here).norm() >= limit) return static_cast<int>(i);
   }
-  return false;
+  return kNothing;
 }
 
 void Simulator::count_person_contacts() {
@@ -87,11 +87,13 @@ void Simulator::integrate(double dt_s) {
     const double travel = command_.linear_mps * dt_s;
     const core::Pose2 next{pose_.x + travel * std::cos(heading), pose_.y + travel * std::sin(heading),
                            core::wrap_angle(pose_.theta + turn)};
-    if (collides(pose_.translation(), next.translation())) {
+    const int hit = step_runs_into(pose_.translation(), next.translation());
+    if (hit != kNothing) {
       ++collisions_;
       if (!in_contact_) {
-        if (collision_events_ < kCollisionLogSize) collision_log_[collision_events_] = {time_s(), pose_};
+        if (collision_events_ < kCollisionLogSize) collision_log_[collision_events_] = {time_s(), pose_, hit};
         ++collision_events_;
+        if (hit != kStaticObstacle) ++person_collision_events_;
       }
       in_contact_ = true;
       command_ = core::DriveCommand{};

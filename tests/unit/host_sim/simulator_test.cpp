@@ -185,6 +185,8 @@ TEST(Simulator, DriveIntoAWallIsStoppedAndCounted) {
   ASSERT_EQ(simulator.collision_log_size(), 1U);
   EXPECT_EQ(simulator.collision_log(0).pose.x, simulator.true_pose().x);
   EXPECT_GT(simulator.collision_log(0).time_s, 13.0);  // 1.65 m at 0.12 m/s
+  EXPECT_EQ(simulator.collision_log(0).person, Simulator::kStaticObstacle);
+  EXPECT_EQ(simulator.person_collision_event_count(), 0U);
   EXPECT_GT(simulator.true_pose().x, 10.0 - 0.35 - 0.002);
   EXPECT_LE(simulator.true_pose().x, 10.0 - 0.35);
   EXPECT_EQ(simulator.current_command().linear_mps, 0.0);
@@ -211,6 +213,7 @@ TEST(Simulator, APersonWalkingIntoTheRobotIsTheirCollisionNotOurs) {
   Simulator simulator(world, core::RobotConfig{}, core::CameraConfig{}, noiseless(), 1);
   simulator.step(20.0);  // stopped: the person passes through once
   EXPECT_EQ(simulator.collision_count(), 0U);
+  EXPECT_EQ(simulator.person_collision_event_count(), 0U);
   EXPECT_EQ(simulator.person_contact_count(), 1U);
   simulator.command({0.0, 0.1});  // turning in place as the person comes back: still theirs
   simulator.step(15.0);
@@ -259,6 +262,9 @@ TEST(Simulator, DrivingIntoAPersonIsOurCollision) {
   simulator.step(30.0);
   EXPECT_EQ(simulator.collision_count(), 1U);
   EXPECT_EQ(simulator.person_contact_count(), 0U);
+  EXPECT_EQ(simulator.person_collision_event_count(), 1U);
+  ASSERT_EQ(simulator.collision_log_size(), 1U);
+  EXPECT_EQ(simulator.collision_log(0).person, 0);
   EXPECT_NEAR(simulator.true_pose().x, 12.0 - 0.25 - 0.35, 0.002);
 }
 

@@ -74,15 +74,19 @@ class Simulator {
   double pan_rad() const { return pan_rad_; }
   std::uint64_t collision_count() const { return collisions_; }
   std::uint64_t collision_event_count() const { return collision_events_; }
-  // Where the first kCollisionLogSize contacts happened (time and true pose), for reports.
+  // Where the first kCollisionLogSize contacts happened (time and true pose) and what the
+  // robot ran into (a person's index in World::people, or kStaticObstacle), for reports.
+  static constexpr int kStaticObstacle = -1;
   struct CollisionEvent {
     double time_s = 0.0;
     core::Pose2 pose;
+    int person = kStaticObstacle;
   };
   static constexpr std::size_t kCollisionLogSize = 32;
   std::size_t collision_log_size() const { return std::min<std::size_t>(collision_events_, kCollisionLogSize); }
   const CollisionEvent& collision_log(std::size_t i) const { return collision_log_[i]; }
-  std::uint64_t person_contact_count() const { return person_contacts_; }
+  std::uint64_t person_collision_event_count() const { return person_collision_events_; }  // ours, into a person
+  std::uint64_t person_contact_count() const { return person_contacts_; }  // a person's, into the robot
   std::uint64_t odometry_dropped() const { return odometry_queue_.overwritten(); }
   double distance_travelled_m() const { return distance_m_; }
   const World& world() const { return world_; }
@@ -93,9 +97,10 @@ class Simulator {
 
  private:
   void integrate(double dt_s);
-  // The step from `here` to `there` brings the disc into an obstacle, or into a person it
-  // does not touch at `here`.
-  bool collides(const Eigen::Vector2d& here, const Eigen::Vector2d& there) const;
+  // What the step from `here` to `there` brings the disc into: kNothing, kStaticObstacle, or
+  // the index of a person it does not touch at `here`.
+  static constexpr int kNothing = -2;
+  int step_runs_into(const Eigen::Vector2d& here, const Eigen::Vector2d& there) const;
   void count_person_contacts();
   void emit_odometry();
 
@@ -117,6 +122,7 @@ class Simulator {
   double pan_target_rad_ = 0.0;
   std::uint64_t collisions_ = 0;
   std::uint64_t collision_events_ = 0;
+  std::uint64_t person_collision_events_ = 0;
   bool in_contact_ = false;  // a step was refused and the robot has not moved clear since
   std::array<CollisionEvent, kCollisionLogSize> collision_log_{};
   std::uint64_t person_contacts_ = 0;
