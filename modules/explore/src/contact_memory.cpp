@@ -47,7 +47,9 @@ void StallDetector::commanded(double time_s, const Eigen::Vector2d& position, do
 ContactMemory::ContactMemory(const core::ExploreConfig& config, int max_width, int max_height)
     : arc_rad_(core::degrees_to_radians(config.contact_arc_deg)),
       hold_s_(config.contact_hold_s),
+      repeat_radius_m_(config.contact_repeat_radius_m),
       contacts_(static_cast<std::size_t>(config.contact_memory)),
+      cleared_points_(static_cast<std::size_t>(config.contact_memory)),
       cells_(new std::uint8_t[static_cast<std::size_t>(max_width) * static_cast<std::size_t>(max_height)]),
       cell_capacity_(static_cast<std::size_t>(max_width) * static_cast<std::size_t>(max_height)) {}
 
@@ -59,9 +61,19 @@ void ContactMemory::record(const GridView& grid, const core::Pose2& pose, double
     const Eigen::Vector2d point = pose.translation() + reach * Eigen::Vector2d(std::cos(angle), std::sin(angle));
     const Eigen::Vector2i cell = grid.cell_of(point);
     const bool free = grid.contains(cell.x(), cell.y()) && grid.at(cell.x(), cell.y()) == CellState::free;
+    const bool repeated = near_a_cleared_contact(point);
     ++recorded_;
-    if (contacts_.emplace_back(Contact{point, time_s, free}) == nullptr) ++forgotten_full_;
+    if (repeated) ++repeated_;
+    if (contacts_.emplace_back(Contact{point, time_s, free, repeated}) == nullptr) ++forgotten_full_;
   }
+}
+
+bool ContactMemory::near_a_cleared_contact(const Eigen::Vector2d& point) const {
+  if (repeat_radius_m_ <= 0.0) return false;
+  for (const Eigen::Vector2d& cleared : cleared_points_) {
+    if ((cleared - point).norm() <= repeat_radius_m_) return true;
+  }
+  return false;
 }
 
 bool ContactMemory::keep(const Contact& contact, const GridView& grid, double time_s) {
@@ -78,10 +90,19 @@ bool ContactMemory::keep(const Contact& contact, const GridView& grid, double ti
 }
 
 std::size_t ContactMemory::clear() {
-  const std::size_t held = contacts_.size();
-  contacts_.clear();
-  cleared_ += held;
-  return held;
+  std::size_t forgotten = 0;
+  for (std::size_t i = 0; i < contacts_.size();) {
+    if (contacts_[i].repeated) {
+      ++i;
+      continue;
+    }
+    cleared_points_.emplace_back(contacts_[i].point);  // none when full: the oldest stay
+    contacts_[i] = contacts_[contacts_.size() - 1];
+    contacts_.pop_back();
+    ++forgotten;
+  }
+  cleared_ += forgotten;
+  return forgotten;
 }
 
 GridView ContactMemory::stamp(const GridView& grid, double time_s) {

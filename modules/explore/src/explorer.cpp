@@ -169,7 +169,8 @@ void Explorer::rebuild_map(const ExploreInput& input) {
 // touched (a contact ahead, another backing out) can be closed by them for contact_hold_s.
 // So neither "nothing left" nor "no way back" is concluded on them: they are forgotten and the
 // map rebuilt first. True when there were any. A contact that was real is made again by the
-// next stall, and a goal behind it fails on stuck_timeout_s as before.
+// next stall, and that one is kept through later clears (contact_repeat_radius_m): the
+// explorer concludes on it rather than drive into the same surface after every clear.
 bool Explorer::clear_contacts(const ExploreInput& input) {
   if (contacts_.clear() == 0) return false;
   ++counters_.contact_clears;

@@ -122,6 +122,36 @@ TEST(ContactMemory, ClearForgetsEveryContactAndCountsThem) {
   EXPECT_EQ(memory.cleared(), 3U);
 }
 
+// A plain pillar in a gap the grid holds open: the robot drives into it, the explorer finds
+// nothing else to do and clears the contact, and drives into it again. That second contact is
+// real and outlives the next clear; a contact elsewhere is cleared as before.
+TEST(ContactMemory, AContactMadeAgainWhereOneWasClearedIsNotClearedAgain) {
+  TestGrid grid(60, 60, CellState::free);
+  core::ExploreConfig config;
+  config.contact_repeat_radius_m = 0.2;
+  ContactMemory memory(config, 60, 60);
+  memory.record(grid.view(), core::Pose2{3.02, 3.05, 0.0}, 0.35, 1.0);
+  EXPECT_EQ(memory.clear(), 3U);
+  memory.record(grid.view(), core::Pose2{3.05, 3.1, 0.1}, 0.35, 20.0);  // the same pillar
+  memory.record(grid.view(), core::Pose2{1.0, 1.0, 3.0}, 0.35, 21.0);   // elsewhere
+  EXPECT_EQ(memory.repeated(), 3U);
+  EXPECT_EQ(memory.clear(), 3U);
+  EXPECT_EQ(memory.held(), 3U);
+  EXPECT_EQ(memory.stamp(grid.view(), 22.0).at(34, 31), CellState::occupied);
+  EXPECT_EQ(memory.clear(), 0U);
+  EXPECT_EQ(memory.cleared(), 6U);
+  // It is forgotten as any contact is.
+  EXPECT_EQ(memory.stamp(grid.view(), 20.0 + config.contact_hold_s + 1.0).cells, grid.view().cells);
+
+  config.contact_repeat_radius_m = 0.0;  // off: every clear forgets every contact
+  ContactMemory off(config, 60, 60);
+  off.record(grid.view(), core::Pose2{3.02, 3.05, 0.0}, 0.35, 1.0);
+  EXPECT_EQ(off.clear(), 3U);
+  off.record(grid.view(), core::Pose2{3.05, 3.1, 0.1}, 0.35, 20.0);
+  EXPECT_EQ(off.clear(), 3U);
+  EXPECT_EQ(off.repeated(), 0U);
+}
+
 TEST(ContactMemory, AFullListCountsWhatItForgetsAndNothingAllocates) {
   TestGrid grid(60, 60, CellState::unknown);
   core::ExploreConfig config;

@@ -21,7 +21,9 @@
 //
 // The contact cells are where the pose estimate put the rim, so they can close a door the robot
 // touched a jamb of (a contact ahead, another backing out): the explorer clears them before it
-// concludes that nothing is left or gives the return up (clear()).
+// concludes that nothing is left or gives the return up (clear()). But a contact made again
+// within contact_repeat_radius_m of one cleared before is real: clear() keeps it, or the
+// explorer would drive into the same surface after every clear.
 
 #include <cstdint>
 #include <memory>
@@ -68,7 +70,8 @@ class ContactMemory {
   // a copy in the memory's own buffer, or `grid` itself when there is no contact (or it is
   // larger than the buffer, counted). Valid until the next call.
   GridView stamp(const GridView& grid, double time_s);
-  // Forgets every contact; returns how many there were.
+  // Forgets every contact but those made again where a cleared one was; returns how many it
+  // forgot.
   std::size_t clear();
 
   std::size_t held() const { return contacts_.size(); }
@@ -77,6 +80,7 @@ class ContactMemory {
   std::uint64_t freed() const { return freed_; }                    // seen free later
   std::uint64_t expired() const { return expired_; }
   std::uint64_t cleared() const { return cleared_; }
+  std::uint64_t repeated() const { return repeated_; }  // contacts made again where one was cleared
   std::uint64_t grid_too_large() const { return grid_too_large_; }
 
  private:
@@ -84,12 +88,16 @@ class ContactMemory {
     Eigen::Vector2d point;
     double time_s = 0.0;
     bool free_at_contact = false;  // the grid held the cell free when the robot touched it
+    bool repeated = false;         // near a contact cleared before: not cleared again
   };
   bool keep(const Contact& contact, const GridView& grid, double time_s);
+  bool near_a_cleared_contact(const Eigen::Vector2d& point) const;
 
   double arc_rad_;
   double hold_s_;
+  double repeat_radius_m_;
   core::FixedVector<Contact> contacts_;
+  core::FixedVector<Eigen::Vector2d> cleared_points_;  // the oldest are kept when it is full
   std::unique_ptr<std::uint8_t[]> cells_;
   std::size_t cell_capacity_;
   std::uint64_t recorded_ = 0;
@@ -97,6 +105,7 @@ class ContactMemory {
   std::uint64_t freed_ = 0;
   std::uint64_t expired_ = 0;
   std::uint64_t cleared_ = 0;
+  std::uint64_t repeated_ = 0;
   std::uint64_t grid_too_large_ = 0;
 };
 

@@ -90,7 +90,7 @@ struct ExploreCounters {
   std::uint64_t return_failures = 0;  // no way back or no progress on it; given up at goal_failures_before_blacklist
   std::uint64_t looks_before_giving_up = 0;  // no goal, or no way back: one more look first
   std::uint64_t back_offs = 0;       // backed off after a stall
-  std::uint64_t contact_clears = 0;  // contacts forgotten before concluding "explored" or "no way back"
+  std::uint64_t contact_clears = 0;  // contacts forgotten (but repeated ones) before concluding "explored" or "no way back"
   std::uint64_t trace_crossings = 0;   // plans let cross old traces rather than conclude "no plan" or "nothing left"
   std::uint64_t traces_confirmed = 0;  // trace cells still occupied after a look: obstacles since
   std::uint64_t plans_kept_for_walkers = 0;  // blocked only by passers-by: kept (wait_for_walkers)

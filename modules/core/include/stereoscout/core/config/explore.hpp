@@ -49,6 +49,7 @@ struct ExploreConfig {
   double contact_arc_deg = 25.0;
   int contact_memory = 256;
   double contact_hold_s = 600.0;
+  double contact_repeat_radius_m = 0.2;
   int event_memory = 4096;
   double time_limit_s = 3600.0;
   bool pan_at_goal = true;
@@ -100,6 +101,7 @@ inline void describe(ConfigVisitor& v, ExploreConfig& c) {
   v.number("stall_back_off_m", c.stall_back_off_m, {0.0, 2.0, "m", "After a stall the robot backs off this far at its top speed (while the disc behind is clear in the grid, and for at most twice the time it needs) before it looks and replans: a plan from the point of contact leads into the same contact. 0 = off; not in the paper."});
   v.number("contact_arc_deg", c.contact_arc_deg, {0.0, 90.0, "deg", "A stall marks the cells just beyond the robot's rim straight ahead and this far to either side as occupied for planning."});
   v.integer_field("contact_memory", c.contact_memory, {1, 100000, "cells", "Contact cells remembered (fixed list; when full, new ones are counted and forgotten)."});
+  v.number("contact_repeat_radius_m", c.contact_repeat_radius_m, {0.0, 5.0, "m", "Before concluding that nothing is left or that there is no way back, the explorer clears the contact cells (they can close a door whose jamb the robot touched); a contact made again within this distance of one it cleared is real and is not cleared again, only forgotten as any contact is. Without this, a plain pillar in a gap the grid held open was driven into 25 times in 430 s, the contact cleared each time the explorer found nothing else to do (clutter, seed 6, docs/results.md). 0 = clear every time. Not in the paper."});
   v.number("contact_hold_s", c.contact_hold_s, {1.0, 1e7, "s", "A contact cell is forgotten after this long, or earlier when the grid sees its cell free after holding it unknown or occupied (a person who walked on)."});
   v.integer_field("event_memory", c.event_memory, {1, 10000000, "events", "Explorer events kept for the run directory's explore_events.csv (goals chosen, reached and failed, replans, stops, stalls, looks; a fixed ring: when full the oldest is dropped and counted)."});
   v.number("time_limit_s", c.time_limit_s, {1.0, 1e7, "s", "Exploration ends after this long (then returns to start if configured)."});
