@@ -238,6 +238,7 @@ void write_counters(report::JsonWriter& json, const stack::Stack& stack) {
       .unsigned_integer("contact_cells_repeated", stack.explorer().contacts().repeated())
       .unsigned_integer("contact_clears", e.contact_clears)
       .unsigned_integer("trace_crossings", e.trace_crossings)
+      .unsigned_integer("trail_follows", e.trail_follows)
       .unsigned_integer("traces_confirmed", e.traces_confirmed)
       .unsigned_integer("traces_seen_standing", e.traces_seen_standing)
       .unsigned_integer("plans_kept_for_walkers", e.plans_kept_for_walkers)

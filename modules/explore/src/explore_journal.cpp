@@ -19,6 +19,7 @@ const char* to_string(ExploreEventKind kind) {
     case ExploreEventKind::look: return "look";
     case ExploreEventKind::contacts_cleared: return "contacts_cleared";
     case ExploreEventKind::crossing_traces: return "crossing_traces";
+    case ExploreEventKind::following_trail: return "following_trail";
     case ExploreEventKind::plan_kept: return "plan_kept";
     case ExploreEventKind::explored: return "explored";
     case ExploreEventKind::time_limit: return "time_limit";

@@ -72,6 +72,7 @@ Explorer::Explorer(const ExploreParams& params)
       stall_(params.explore),
       contacts_(params.explore, params.max_width, params.max_height),
       traces_(params.explore, params.max_width, params.max_height),
+      trail_(params.explore),
       journal_(static_cast<std::size_t>(params.explore.event_memory)),
       planner_(params),
       follower_(params),
@@ -91,6 +92,7 @@ void Explorer::note(ExploreEventKind kind, const ExploreInput& input) {
 
 ExploreOutput Explorer::step(const ExploreInput& input) {
   if (!started_) start(input);
+  trail_.record(position_of(input.pose));
   stalled_ = stall_.stalled(input.time_s, position_of(input.pose));
   ExploreOutput output;
   if (input.emergency_stop) {
@@ -162,6 +164,7 @@ void Explorer::rebuild_map(const ExploreInput& input) {
   GridView navigation_grid = crossing_traces_ ? traces_.forget_traces(planning_grid_, input.time_s) : planning_grid_;
   if (params_.explore.remembered_obstacle_cost > 0.0) navigation_grid.seen_standing = traces_.standing_cells();
   map_.rebuild(navigation_grid, position_of(input.pose), extra);
+  trail_cells_opened_ = following_trail_ ? map_.open_trail(trail_) : 0;
   ++counters_.map_rebuilds;
 }
 
@@ -198,9 +201,29 @@ bool Explorer::start_crossing_traces(const ExploreInput& input) {
   return true;
 }
 
-void Explorer::stop_crossing_traces(const ExploreInput& input) {
-  if (!crossing_traces_) return;
+// The passage the robot came in by can close behind it: a cell smeared at its edge narrows it
+// below the lethal width, and the robot, boxed in, would conclude "explored" and then "no way
+// back". It drove through, so the floor is there: before concluding, plans may follow its
+// trail (trail_memory.hpp) until the goal (or the way back) is reached or fails. True when the
+// trail opened any cell. Only then: a run that never concludes so plans as without it.
+bool Explorer::start_following_trail(const ExploreInput& input) {
+  if (following_trail_ || !trail_.enabled()) return false;
+  following_trail_ = true;
+  rebuild_map(input);
+  if (trail_cells_opened_ == 0) {
+    following_trail_ = false;  // the same map as before
+    return false;
+  }
+  ++counters_.trail_follows;
+  note(ExploreEventKind::following_trail, input);
+  return true;
+}
+
+// Crossing traces and following the trail end with the goal they were for.
+void Explorer::stop_last_resorts(const ExploreInput& input) {
+  if (!crossing_traces_ && !following_trail_) return;
   crossing_traces_ = false;
+  following_trail_ = false;
   rebuild_map(input);
 }
 
@@ -212,7 +235,7 @@ void Explorer::check_plan(const ExploreInput& input) {
     ++counters_.goals_abandoned;
     note(ExploreEventKind::goal_abandoned, input);
     plan_.clear();
-    stop_crossing_traces(input);
+    stop_last_resorts(input);
     state_ = ExploreState::choose_goal;
     return;
   }
@@ -275,8 +298,10 @@ bool Explorer::plan_to_goal(const ExploreInput& input) {
 
 bool Explorer::replan(const ExploreInput& input) {
   follower_.reset();
-  if (plan_to_goal(input) || (state_ == ExploreState::returning && clear_contacts(input) && plan_to_goal(input)) ||
-      (start_crossing_traces(input) && plan_to_goal(input))) {
+  const bool returning = state_ == ExploreState::returning;
+  if (plan_to_goal(input) || (returning && clear_contacts(input) && plan_to_goal(input)) ||
+      (start_crossing_traces(input) && plan_to_goal(input)) ||
+      (returning && start_following_trail(input) && plan_to_goal(input))) {
     fresh_look_ = false;  // the robot drives on: the next failure deserves a look of its own
     // A longer plan is a detour the map now demands (a wall where it held free cells): progress
     // is measured along it, not against the shorter plan's best.
@@ -335,7 +360,7 @@ void Explorer::choose_goal(const ExploreInput& input) {
         begin_look(input);
         return;
       }
-      if (clear_contacts(input) || start_crossing_traces(input)) {
+      if (clear_contacts(input) || start_crossing_traces(input) || start_following_trail(input)) {
         map_.compute_reachable(cell_of(input.pose));
         continue;
       }
@@ -362,6 +387,7 @@ void Explorer::finish_exploring(const ExploreInput& input, FinishReason reason) 
   resume_after_look_ = false;
   plan_.clear();
   pan_target_rad_ = 0.0;
+  following_trail_ = false;  // the way back follows the trail only when there is no other
   if (!params_.explore.return_to_start) {
     state_ = ExploreState::finished;
     return;
@@ -379,7 +405,7 @@ void Explorer::finish_exploring(const ExploreInput& input, FinishReason reason) 
 
 void Explorer::goal_failed(const ExploreInput& input) {
   plan_.clear();
-  stop_crossing_traces(input);
+  stop_last_resorts(input);
   if (state_ == ExploreState::returning) {
     // No way back, or no progress on it: a passer-by may stand in the only door, so look and
     // try again, up to goal_failures_before_blacklist failures in all (a stuck return that
@@ -473,7 +499,7 @@ void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
     ++counters_.goals_reached;
     note(ExploreEventKind::goal_reached, input);
     memory_.record_visit(goal_.position);
-    stop_crossing_traces(input);
+    stop_last_resorts(input);
     if (params_.explore.pan_at_goal) {
       begin_look(input);
     } else {

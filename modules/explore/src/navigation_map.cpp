@@ -71,6 +71,40 @@ void NavigationMap::open_way_out() {
   }
 }
 
+std::size_t NavigationMap::open_trail(const TrailMemory& trail) {
+  if (grid_.width <= 0) return 0;
+  // Steps of a quarter cell along each driven segment: consecutive cells are 8-neighbours.
+  const double step_m = 0.25 * grid_.resolution_m;
+  std::size_t opened = 0;
+  for (std::size_t i = 0; i < trail.size(); ++i) {
+    const Eigen::Vector2d& to = trail[i].position;
+    if (i == 0 || !trail[i].joined) {
+      if (open_trail_cell(to)) ++opened;
+      continue;
+    }
+    const Eigen::Vector2d& from = trail[i - 1].position;
+    const int steps = std::max(1, static_cast<int>(std::ceil((to - from).norm() / step_m)));
+    for (int k = 1; k <= steps; ++k) {
+      if (open_trail_cell(from + (to - from) * (static_cast<double>(k) / steps))) ++opened;
+    }
+  }
+  return opened;
+}
+
+// Occupied cells (and unknown ones kept clear of) stay closed, and so do cells whose disc
+// would touch an occupied cell: the safety check would stop the robot there.
+bool NavigationMap::open_trail_cell(const Eigen::Vector2d& position) {
+  const Eigen::Vector2i cell = grid_.cell_of(position);
+  const int x = cell.x();
+  const int y = cell.y();
+  if (!window_.contains(x, y) || passable(x, y) || obstacle_site(x, y) ||
+      occupied_distance_m(x, y) < params_.robot_radius_m) {
+    return false;
+  }
+  traversability_[index(x, y)] = static_cast<std::uint8_t>(Traversability::inflated);
+  return true;
+}
+
 void NavigationMap::find_pockets() {
   region_stamp_ += 2;
   pocket_cells_ = 0;

@@ -461,6 +461,79 @@ TEST(Explorer, ContactsThatCloseTheOnlyDoorAreClearedBeforeConcluding) {
   EXPECT_GT(explorer.goal().position.x(), 3.5);
 }
 
+// A 0.8 m door (rows 27-34) in a wall at x = 3.0-3.2 m; the top of the first room (y above
+// 5.2 m) and the second room beyond x = 6 m unknown. The robot (0.3 m radius) drives from
+// x = 2 m through the door along y = 3.05 m to x = 5 m, where it sees the second room whole. In the same update a cell
+// smeared at the door's edge (29, 33) leaves no cell of the door the lethal 0.35 m from every
+// occupied one: the door has closed behind it, though it just drove through it, 0.3 m and
+// more from that cell.
+struct DoorClosedBehind {
+  TestGrid grid{100, 60, CellState::free};
+  ExploreParams params;
+  explicit DoorClosedBehind(ExploreParams base) : params(base) {
+    params.robot_radius_m = 0.3;
+    params.explore.trace_forget_after_s = 0.0;  // the smeared cell is no person's trace
+    params.explore.max_pocket_area_m2 = 0.0;     // the top of the first room is a frontier
+    grid.walls();
+    grid.fill(30, 1, 32, 27, CellState::occupied);
+    grid.fill(30, 35, 32, 59, CellState::occupied);
+    grid.fill(1, 52, 30, 59, CellState::unknown);
+    grid.fill(60, 1, 99, 59, CellState::unknown);
+  }
+  // The robot moves at 6 mm a tick, whatever the explorer commands; the output of the tick
+  // at time_s that sees the second room and the smeared cell.
+  ExploreOutput drive_through_and_smear(Explorer& explorer, double tick_s, double time_s) {
+    const GridView view = grid.view();
+    explorer.step(input_at(view, 2.0, 3.05, 0.0, 0.0, true));
+    EXPECT_GT(explorer.goal().position.x(), 3.2);  // the first goal is in the second room
+    double t = 0.0;
+    for (double x = 2.0; x <= 5.0; x += 0.006) explorer.step(input_at(view, x, 3.05, 0.0, t += tick_s, false));
+    grid.fill(60, 1, 99, 59, CellState::free);
+    grid.walls();
+    grid.set(29, 33, CellState::occupied);
+    return explorer.step(input_at(view, 5.0, 3.05, 0.0, time_s, true));
+  }
+};
+
+TEST(Explorer, ABoxedInRobotFollowsItsOwnPathBackRatherThanConcludeExplored) {
+  DoorClosedBehind scene(no_look_params(100, 60));
+  Explorer explorer(scene.params);
+  const ExploreOutput output = scene.drive_through_and_smear(explorer, 0.05, 40.0);
+  EXPECT_EQ(explorer.finish_reason(), FinishReason::none);
+  EXPECT_EQ(output.state, ExploreState::drive);
+  EXPECT_EQ(explorer.counters().trail_follows, 1U);
+  EXPECT_LT(explorer.goal().position.x(), 3.0);  // the unknown top of the first room
+  EXPECT_GT(explorer.goal().position.y(), 3.5);
+
+  // Without the trail it concludes: nothing reachable is left.
+  DoorClosedBehind without(no_look_params(100, 60));
+  without.params.explore.trail_length_m = 0.0;
+  Explorer concluding(without.params);
+  without.drive_through_and_smear(concluding, 0.05, 40.0);
+  EXPECT_EQ(concluding.finish_reason(), FinishReason::explored);
+  EXPECT_EQ(concluding.counters().trail_follows, 0U);
+}
+
+// The same door closed behind it on the way back: it follows its trail back to the start.
+TEST(Explorer, NoWayBackButItsOwnPathIsNotGivenUp) {
+  ExploreParams params = test_params(100, 60);
+  params.explore.pan_at_goal = false;
+  params.explore.time_limit_s = 10.0;
+  DoorClosedBehind scene(params);
+  Explorer explorer(scene.params);
+  EXPECT_EQ(scene.drive_through_and_smear(explorer, 0.01, 10.0).state, ExploreState::returning);
+  EXPECT_EQ(explorer.finish_reason(), FinishReason::time_limit);
+  EXPECT_EQ(explorer.counters().return_failures, 0U);
+  EXPECT_EQ(explorer.counters().trail_follows, 1U);
+  EXPECT_FALSE(explorer.plan().empty());
+
+  DoorClosedBehind without(params);
+  without.params.explore.trail_length_m = 0.0;
+  Explorer giving_up(without.params);
+  EXPECT_EQ(without.drive_through_and_smear(giving_up, 0.01, 10.0).state, ExploreState::finished);
+  EXPECT_EQ(giving_up.counters().return_failures, 1U);
+}
+
 // On the way back the same contacts would leave no way back at all: they are cleared and the
 // return goes on through the door.
 TEST(Explorer, ContactsThatCloseTheWayBackAreClearedBeforeGivingItUp) {

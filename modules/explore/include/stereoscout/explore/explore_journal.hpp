@@ -35,6 +35,7 @@ enum class ExploreEventKind : std::uint8_t {
   look,              // a 360-degree look begins
   contacts_cleared,  // before concluding "explored" or "no way back"
   crossing_traces,   // before concluding "no plan" or "explored": a person's old traces are crossed
+  following_trail,   // before concluding "explored" or "no way back": plans may follow the robot's own path
   explored,          // no goal worth min_goal_value is left
   time_limit,        // explore.time_limit_s reached
   return_failed,     // no way back to the start, or no progress on it

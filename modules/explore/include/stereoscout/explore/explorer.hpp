@@ -12,7 +12,8 @@
 // fresh look from where the robot stands (people walking past leave traces that a look
 // clears; see the occupancy grid). Neither "no plan" nor "nothing left" is concluded on a
 // person's old traces either (trace_forget_after_s): plans cross them until that goal ends
-// (trace_memory.hpp).
+// (trace_memory.hpp); nor on a passage the robot drove through that the grid has closed since
+// (trail_length_m): plans follow its own path back (trail_memory.hpp).
 //
 // Safety, every tick: the emergency stop commands zero velocity in the same call; before any
 // forward motion the next stretch of the plan (and the point just ahead of the robot) is
@@ -45,6 +46,7 @@
 #include "stereoscout/explore/path_planner.hpp"
 #include "stereoscout/explore/seen_obstacles.hpp"
 #include "stereoscout/explore/trace_memory.hpp"
+#include "stereoscout/explore/trail_memory.hpp"
 
 namespace stereoscout::explore {
 
@@ -92,6 +94,7 @@ struct ExploreCounters {
   std::uint64_t back_offs = 0;       // backed off after a stall
   std::uint64_t contact_clears = 0;  // contacts forgotten (but repeated ones) before concluding "explored" or "no way back"
   std::uint64_t trace_crossings = 0;   // plans let cross old traces rather than conclude "no plan" or "nothing left"
+  std::uint64_t trail_follows = 0;     // plans let follow the robot's own path rather than conclude "explored" or "no way back"
   std::uint64_t traces_confirmed = 0;  // trace cells still occupied after a look: obstacles since
   std::uint64_t plans_kept_for_walkers = 0;  // blocked only by passers-by: kept (wait_for_walkers)
   std::uint64_t walker_waits_ended = 0;      // a goal's walker_wait_per_goal_s used up: replanned as without it
@@ -120,7 +123,8 @@ class Explorer {
   void rebuild_map(const ExploreInput& input);
   bool clear_contacts(const ExploreInput& input);
   bool start_crossing_traces(const ExploreInput& input);
-  void stop_crossing_traces(const ExploreInput& input);
+  bool start_following_trail(const ExploreInput& input);
+  void stop_last_resorts(const ExploreInput& input);
   bool blocked_by_passers_by(const ExploreInput& input, const Eigen::Vector2i& cell) const;
   bool may_wait_for_walkers(const ExploreInput& input);
   void stop_waiting_for_walkers(double time_s);
@@ -161,10 +165,13 @@ class Explorer {
   StallDetector stall_;
   ContactMemory contacts_;
   TraceMemory traces_;
+  TrailMemory trail_;
   ExploreJournal journal_;
   GridView planning_grid_;  // the input grid with the contact cells occupied (last rebuild): the safety check's
   bool planning_on_copy_ = false;  // planning_grid_ is the contact memory's stamped copy
   bool crossing_traces_ = false;   // the navigation map holds a person's old traces free
+  bool following_trail_ = false;   // ... and the robot's own path open
+  std::size_t trail_cells_opened_ = 0;  // by the last rebuild
   bool stalled_ = false;           // this tick
   bool holding_for_scan_ = false;  // standing still for what the scan guard saw
   PathPlanner planner_;

@@ -27,6 +27,7 @@
 
 #include "stereoscout/core/geometry.hpp"
 #include "stereoscout/explore/grid_view.hpp"
+#include "stereoscout/explore/trail_memory.hpp"
 
 namespace stereoscout::explore {
 
@@ -54,6 +55,10 @@ class NavigationMap {
   // unknown_clearance the others are kept clear of like occupied cells. Returns false (and leaves an empty map) if
   // the grid is larger than the buffers.
   bool rebuild(const GridView& grid, const Eigen::Vector2d& robot, const Eigen::Vector2d& extra_unknown_centre);
+  // After rebuild(): the cells along the robot's trail that are lethal only for their
+  // clearance, and no nearer an occupied cell than the robot's radius, become passable at the
+  // highest obstacle cost (the explorer's last resort, trail_memory.hpp). Returns how many.
+  std::size_t open_trail(const TrailMemory& trail);
 
   const GridView& grid() const { return grid_; }
   const CellBox& window() const { return window_; }
@@ -92,6 +97,7 @@ class NavigationMap {
   bool obstacle_site(int x, int y) const;
   void classify();
   void open_way_out();
+  bool open_trail_cell(const Eigen::Vector2d& position);
   double site_distance_m(const std::int32_t* sites, int x, int y) const;
   bool under_robot(int x, int y) const;
   void find_pockets();
