@@ -190,15 +190,8 @@ bool Explorer::clear_contacts(const ExploreInput& input) {
 // follows clears it, or confirms it as an obstacle.
 bool Explorer::start_crossing_traces(const ExploreInput& input) {
   if (crossing_traces_ || params_.explore.trace_forget_after_s <= 0.0) return false;
-  crossing_traces_ = true;
-  rebuild_map(input);
-  if (traces_.forgotten_last() == 0) {
-    crossing_traces_ = false;  // the same map as before
-    return false;
-  }
-  ++counters_.trace_crossings;
-  note(ExploreEventKind::crossing_traces, input);
-  return true;
+  return start_last_resort(crossing_traces_, [this] { return traces_.forgotten_last() > 0; },
+                           ExploreEventKind::crossing_traces, counters_.trace_crossings, input);
 }
 
 // The passage the robot came in by can close behind it: a cell smeared at its edge narrows it
@@ -208,14 +201,23 @@ bool Explorer::start_crossing_traces(const ExploreInput& input) {
 // trail opened any cell. Only then: a run that never concludes so plans as without it.
 bool Explorer::start_following_trail(const ExploreInput& input) {
   if (following_trail_ || !trail_.enabled()) return false;
-  following_trail_ = true;
+  return start_last_resort(following_trail_, [this] { return trail_cells_opened_ > 0; },
+                           ExploreEventKind::following_trail, counters_.trail_follows, input);
+}
+
+// Switches one last resort on (a flag rebuild_map() reads) and keeps it only when the map it
+// rebuilt differs: counted and journaled then.
+template <typename Changed>
+bool Explorer::start_last_resort(bool& active, Changed&& changed, ExploreEventKind kind, std::uint64_t& count,
+                                 const ExploreInput& input) {
+  active = true;
   rebuild_map(input);
-  if (trail_cells_opened_ == 0) {
-    following_trail_ = false;  // the same map as before
+  if (!changed()) {
+    active = false;  // the same map as before
     return false;
   }
-  ++counters_.trail_follows;
-  note(ExploreEventKind::following_trail, input);
+  ++count;
+  note(kind, input);
   return true;
 }
 

@@ -124,6 +124,9 @@ class Explorer {
   bool clear_contacts(const ExploreInput& input);
   bool start_crossing_traces(const ExploreInput& input);
   bool start_following_trail(const ExploreInput& input);
+  template <typename Changed>
+  bool start_last_resort(bool& active, Changed&& changed, ExploreEventKind kind, std::uint64_t& count,
+                         const ExploreInput& input);
   void stop_last_resorts(const ExploreInput& input);
   bool blocked_by_passers_by(const ExploreInput& input, const Eigen::Vector2i& cell) const;
   bool may_wait_for_walkers(const ExploreInput& input);
