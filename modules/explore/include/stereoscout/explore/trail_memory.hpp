@@ -27,7 +27,8 @@ struct TrailPoint {
 
 class TrailMemory {
  public:
-  // Half the finest navigation cell we use (0.1 m), so consecutive points never skip a cell.
+  // Half a 0.1 m navigation cell: the path through a door is followed to within a few
+  // centimetres (NavigationMap::open_trail() steps along each segment a quarter cell at a time).
   static constexpr double kTrailSpacing_m = 0.05;
   // The robot moves 6 mm a control tick; the estimate jumps by decimetres when the most likely
   // particle changes.
