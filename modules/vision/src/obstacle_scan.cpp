@@ -21,6 +21,7 @@ ObstacleScanParams scan_params_from_config(const core::VisionConfig& vision, con
   params.blank_wall_within_m = vision.scan_blank_wall_within_m;
   params.blank_wall_untextured_fraction = vision.scan_blank_wall_untextured_fraction;
   params.wall_base_min_step_grey = vision.scan_wall_base_min_step;
+  params.wall_base_within_m = vision.scan_wall_base_within_m;
   params.sigma_d_px = vision.sigma_d_px;
   params.floor_onto_plane = vision.scan_floor_onto_plane;
   return params;
@@ -157,7 +158,7 @@ void ObstacleScanner::add_wall_bases(const cv::Mat& disparity, const cv::Mat& le
                                      const Eigen::Isometry3d& robot_from_camera) {
   const WallBaseParams wall_base{params_.wall_base_min_step_grey, params_.blank_wall_untextured_fraction};
   const Eigen::Vector3d origin = robot_from_camera.translation();
-  const double within_m = std::min(params_.blank_wall_within_m, params_.max_range_m);
+  const double within_m = std::min(params_.wall_base_within_m, params_.max_range_m);
   for (int x = 0; x < left.cols; ++x) {
     const double row = find_wall_base_row(left, disparity, x, horizon_row_, wall_base);
     if (row < 0.0) continue;

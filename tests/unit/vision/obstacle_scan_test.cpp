@@ -195,8 +195,7 @@ core::DepthScan scan_of_wall_faced_head_on(double wall_x_m, bool with_image, con
 }
 
 TEST(ObstacleScan, ABlankWallFacedHeadOnStandsWhereItsBaseIs) {
-  // 1.4 m ahead of the camera: the floor's end gives nothing, the wall's base does, in the
-  // columns where it lies within 1.5 m on the floor (the middle 280, less a margin).
+  // 1.4 m ahead of the camera: the floor's end gives nothing, the wall's base does.
   const core::DepthScan scan = scan_of_wall_faced_head_on(1.5, true);
   for (int x = 200; x < 440; x += 20) {
     const core::DepthScanColumn& column = scan.columns[static_cast<std::size_t>(x)];
@@ -208,13 +207,27 @@ TEST(ObstacleScan, ABlankWallFacedHeadOnStandsWhereItsBaseIs) {
                 -std::atan((x - camera.principal_x_px) / camera.focal_px), 0.01)
         << "column " << x;
   }
-  EXPECT_NE(scan.columns[40].kind, Kind::obstacle);  // 1.75 m away along the floor
   EXPECT_EQ(scan_of_wall_faced_head_on(1.5, false).columns[320].kind, Kind::invalid);
   ObstacleScanParams off;
   off.wall_base_min_step_grey = 0.0;
   EXPECT_EQ(scan_of_wall_faced_head_on(1.5, true, off).columns[320].kind, Kind::invalid);
-  // Beyond blank_wall_within_m (1.5 m on the floor from the camera) a step is no wall.
-  EXPECT_EQ(scan_of_wall_faced_head_on(1.7, true).columns[320].kind, Kind::invalid);
+  // Beyond wall_base_within_m on the floor from the camera a step is no wall.
+  ObstacleScanParams near_only;
+  near_only.wall_base_within_m = 1.5;
+  EXPECT_NE(scan_of_wall_faced_head_on(1.5, true, near_only).columns[40].kind, Kind::obstacle);  // 1.75 m away
+  EXPECT_EQ(scan_of_wall_faced_head_on(1.7, true, near_only).columns[320].kind, Kind::invalid);
+  EXPECT_EQ(scan_of_wall_faced_head_on(3.7, true).columns[320].kind, Kind::invalid);
+}
+
+// Farther than the floor-end rule reaches (blank_wall_within_m), the base still places the
+// wall by its row's ray: a corridor's walls are seen at a slant from 2-3.5 m.
+TEST(ObstacleScan, ABlankWallsBaseIsFoundOutToItsOwnRange) {
+  for (const double wall_x_m : {1.7, 2.5, 3.2}) {
+    const core::DepthScan scan = scan_of_wall_faced_head_on(wall_x_m, true);
+    const core::DepthScanColumn& column = scan.columns[320];
+    ASSERT_EQ(column.kind, Kind::obstacle) << "wall at " << wall_x_m << " m";
+    EXPECT_NEAR(column.x_robot_m, wall_x_m, 0.03) << "wall at " << wall_x_m << " m";
+  }
 }
 
 // A step in the floor's brightness where stereo matched the floor on beyond it (a bright

@@ -50,7 +50,8 @@
 // about 2 m, below a blank ceiling): its end there is not a wall.
 // Given the left image as well, a column with no obstacle looks first for the wall's base
 // (wall_base.hpp): the brightness step where a blank wall meets the floor, within
-// blank_wall_within_m on the floor plane. It puts the wall where it stands, not where the
+// wall_base_within_m on the floor plane (farther than the floor's end is trusted: the row of
+// a step gives its range by geometry, not by the floor's fading texture). It puts the wall where it stands, not where the
 // matched floor happens to end, and it also finds walls faced head-on whose floor strip was
 // not matched at all. It must agree with the stereo: no floor or other point seen more than
 // same_surface_depth_m beyond it. Failing that, the floor's end as above.
@@ -93,6 +94,8 @@ struct ObstacleScanParams {
   double blank_wall_untextured_fraction = 0.5;
   // The brightness step at a blank wall's base (wall_base.hpp); 0: the floor's end only.
   double wall_base_min_step_grey = 12.0;
+  // ... looked for this far out on the floor plane.
+  double wall_base_within_m = 3.5;
   // The disparity error of a matched pixel, for a free column's end_range_sigma_m.
   double sigma_d_px = 0.5;
   // A floor point measured below the floor is moved up its ray onto the floor plane
