@@ -15,9 +15,9 @@
 // the matcher for lack of texture (kUntexturedDisparity): anything the matcher could see
 // (furniture, a person, a poster) is the scan's to measure. The first step ends the search
 // whatever it is: a tile's edge or a grout line steps too, but on open floor the first one
-// below the horizon lies far away, beyond the scan's blank_wall_within_m, so the nearer
-// floor's lines are never taken for a wall's base (a sweep of rendered views of the three
-// worlds put none in free space; docs/results.md).
+// below the horizon mostly lies far away, beyond the scan's wall_base_within_m, and the
+// scan keeps a base only where stereo saw nothing beyond it (sweeps of rendered views of
+// the three worlds: docs/results.md).
 
 #include <opencv2/core/mat.hpp>
 
