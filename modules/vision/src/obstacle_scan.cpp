@@ -151,6 +151,13 @@ bool ObstacleScanner::floor_ends_at_unseen_surface(const ColumnState& state) con
          nothing_seen_beyond(state, state.farthest_floor.range_m);
 }
 
+// A wall base stands where stereo saw nothing beyond it; beyond the floor-end rule's range
+// it also needs floor matched before it, not a view that stereo could not measure at all.
+bool ObstacleScanner::wall_base_agrees_with_stereo(const ColumnState& state) const {
+  return nothing_seen_beyond(state, state.wall_base.range_m) &&
+         (state.wall_base.range_m < params_.blank_wall_within_m || state.has_floor);
+}
+
 // Files the base of a blank wall found in each left-image column under its right-image
 // column: on the floor plane, the base row's ray gives the depth, hence the disparity a floor
 // point there has and the right column it is seen in.
@@ -239,7 +246,7 @@ void ObstacleScanner::compute(const cv::Mat& disparity, const cv::Mat& left, dou
       const bool at_camera_height = state.nearest_at_camera_height_m <= confirmed.range_m + params_.same_surface_depth_m;
       out = {static_cast<float>(confirmed.x_m), static_cast<float>(confirmed.y_m), core::DepthScanColumn::Kind::obstacle,
              visible_from, at_camera_height, measurable};
-    } else if (state.has_wall_base && nothing_seen_beyond(state, state.wall_base.range_m)) {
+    } else if (state.has_wall_base && wall_base_agrees_with_stereo(state)) {
       out = {static_cast<float>(state.wall_base.x_m), static_cast<float>(state.wall_base.y_m),
              core::DepthScanColumn::Kind::obstacle, visible_from, false, measurable};
     } else if (state.has_floor && floor_ends_at_unseen_surface(state) && blank_above_floor_end(disparity, state)) {

@@ -179,9 +179,11 @@ cv::Mat blank_wall_image(const cv::Mat& left_depth, const StereoCalibration& cam
   return left;
 }
 
-// A blank wall across the view at wall_x_m, none of its floor matched (tile interiors: the
-// head-on office wall), scanned with the left image (or without, when `with_image` is false).
-core::DepthScan scan_of_wall_faced_head_on(double wall_x_m, bool with_image, const ObstacleScanParams& params = {}) {
+// A blank wall across the view at wall_x_m, its floor matched only up to floor_until_m from
+// the camera (none by default: tile interiors, the head-on office wall), scanned with the
+// left image (or without, when `with_image` is false).
+core::DepthScan scan_of_wall_faced_head_on(double wall_x_m, bool with_image, const ObstacleScanParams& params = {},
+                                           double floor_until_m = 0.0) {
   test::Scene scene;
   scene.boxes.push_back({{wall_x_m, -8.0, 0.0}, {wall_x_m + 0.1, 8.0, 2.5}});
   StereoCalibration camera;
@@ -190,7 +192,7 @@ core::DepthScan scan_of_wall_faced_head_on(double wall_x_m, bool with_image, con
   core::DepthScan scan;
   scanner.allocate(scan);
   const cv::Mat left = with_image ? blank_wall_image(view.left_depth, camera) : cv::Mat();
-  scanner.compute(without_blank_pixels(view.left_depth, camera, 0.0, false), left, 0.0, 0, scan);
+  scanner.compute(without_blank_pixels(view.left_depth, camera, floor_until_m, false), left, 0.0, 0, scan);
   return scan;
 }
 
@@ -216,17 +218,21 @@ TEST(ObstacleScan, ABlankWallFacedHeadOnStandsWhereItsBaseIs) {
   near_only.wall_base_within_m = 1.5;
   EXPECT_NE(scan_of_wall_faced_head_on(1.5, true, near_only).columns[40].kind, Kind::obstacle);  // 1.75 m away
   EXPECT_EQ(scan_of_wall_faced_head_on(1.7, true, near_only).columns[320].kind, Kind::invalid);
-  EXPECT_EQ(scan_of_wall_faced_head_on(3.7, true).columns[320].kind, Kind::invalid);
+  EXPECT_NE(scan_of_wall_faced_head_on(3.7, true, {}, 2.5).columns[320].kind, Kind::obstacle);
 }
 
 // Farther than the floor-end rule reaches (blank_wall_within_m), the base still places the
-// wall by its row's ray: a corridor's walls are seen at a slant from 2-3.5 m.
-TEST(ObstacleScan, ABlankWallsBaseIsFoundOutToItsOwnRange) {
+// wall by its row's ray: a corridor's walls are seen at a slant from 2-3.5 m. There it
+// needs floor matched before it: facing something nearer than the matcher can measure, no
+// floor is matched and a step near the horizon is no wall's base (the clutter hall's rack).
+TEST(ObstacleScan, ABlankWallsBaseIsFoundOutToItsOwnRangeBeyondMatchedFloor) {
   for (const double wall_x_m : {1.7, 2.5, 3.2}) {
-    const core::DepthScan scan = scan_of_wall_faced_head_on(wall_x_m, true);
+    const core::DepthScan scan = scan_of_wall_faced_head_on(wall_x_m, true, {}, wall_x_m - 0.5);
     const core::DepthScanColumn& column = scan.columns[320];
     ASSERT_EQ(column.kind, Kind::obstacle) << "wall at " << wall_x_m << " m";
     EXPECT_NEAR(column.x_robot_m, wall_x_m, 0.03) << "wall at " << wall_x_m << " m";
+    EXPECT_EQ(scan_of_wall_faced_head_on(wall_x_m, true).columns[320].kind, Kind::invalid)
+        << "wall at " << wall_x_m << " m, no floor matched";
   }
 }
 

@@ -54,7 +54,10 @@
 // a step gives its range by geometry, not by the floor's fading texture). It puts the wall where it stands, not where the
 // matched floor happens to end, and it also finds walls faced head-on whose floor strip was
 // not matched at all. It must agree with the stereo: no floor or other point seen more than
-// same_surface_depth_m beyond it. Failing that, the floor's end as above.
+// same_surface_depth_m beyond it, and beyond blank_wall_within_m some floor matched in the
+// column (facing something nearer than the matcher's largest disparity reaches, nothing is
+// matched, and a step near the horizon would pass for a far base). Failing that, the
+// floor's end as above.
 // An obstacle column is also marked obstacle_at_camera_height when the column holds an
 // obstacle point within floor_tolerance_m of the camera's height no more than
 // same_surface_depth_m behind the obstacle: such an obstacle (a person, a wall) stays in view
@@ -139,6 +142,7 @@ class ObstacleScanner {
     bool has_wall_base = false;
     Candidate wall_base;                      // the nearest wall base filed under this column
   };
+  bool wall_base_agrees_with_stereo(const ColumnState& state) const;
   bool floor_ends_at_unseen_surface(const ColumnState& state) const;
   double free_end_range_sigma(const cv::Mat& disparity, const ColumnState& state) const;
   bool nothing_seen_beyond(const ColumnState& state, double range_m) const;
