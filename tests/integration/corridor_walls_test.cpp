@@ -12,14 +12,12 @@
 #include <cstdio>
 #include <initializer_list>
 
+#include "rendered_scan.hpp"
 #include "stereoscout/core/geometry.hpp"
 #include "stereoscout/core/system_config.hpp"
-#include "stereoscout/host_sim/renderer.hpp"
 #include "stereoscout/host_sim/world.hpp"
 #include "stereoscout/occupancy/occupancy_grid.hpp"
 #include "stereoscout/test/paths.hpp"
-#include "stereoscout/vision/calibration.hpp"
-#include "stereoscout/vision/front_end.hpp"
 
 namespace stereoscout {
 namespace {
@@ -81,14 +79,7 @@ CorridorScores drive_along_the_corridor(const core::SystemConfig& config) {
   EXPECT_TRUE(loaded.ok()) << loaded.error_text();
   host_sim::World world = loaded.world;
   world.people.clear();  // the walls, not the walker
-  host_sim::StereoRenderer renderer(world, config.camera, config.sim, static_cast<std::uint64_t>(config.run.seed));
-  const core::CameraMount mount{config.camera.mount_x_m, config.camera.mount_y_m, config.camera.mount_height_m,
-                                core::degrees_to_radians(config.camera.mount_tilt_deg)};
-  vision::VisionFrontEnd front_end(config.vision, config.robot, vision::calibration_from_config(config.camera), mount);
-  core::StereoFrame frame;
-  frame.allocate(config.camera.width_px, config.camera.height_px);
-  core::DepthScan scan;
-  front_end.allocate_scan(scan);
+  cli::RenderedScanner scanner(world, config);
   occupancy::OccupancyGrid grid(
       occupancy::GridGeometry::centred_on(config.grid, core::Pose2{kDriveFrom_m, kCorridorMiddle_m, 0.0}),
       occupancy::LogOddsModel::from_config(config.grid));
@@ -96,8 +87,7 @@ CorridorScores drive_along_the_corridor(const core::SystemConfig& config) {
   for (double travelled = 0.0; travelled <= kDriveTo_m - kDriveFrom_m; travelled += kStep_m) {
     const core::Pose2 pose{kDriveFrom_m + travelled, kCorridorMiddle_m + 0.3 * std::sin(0.7 * travelled),
                            core::degrees_to_radians(10.0) * std::sin(1.3 * travelled)};
-    renderer.render(pose, 0.0, 0.0, frame_index++, frame.left, frame.right, nullptr);
-    if (front_end.scan(frame, scan).ok()) grid.insert(scan, pose);
+    if (scanner.scan_at(pose, frame_index++)) grid.insert(scanner.scan(), pose);
   }
   // Scored where the drive saw the walls: the camera (77 degrees across) sees a wall beside
   // it only from 1.1-1.4 m ahead on, and the last stretch only ahead, at a slant.

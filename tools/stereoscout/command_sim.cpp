@@ -7,12 +7,11 @@
 
 #include "arguments.hpp"
 #include "commands.hpp"
+#include "rendered_scan.hpp"
 #include "stereoscout/core/system_config.hpp"
 #include "stereoscout/host_sim/ground_truth.hpp"
 #include "stereoscout/host_sim/renderer.hpp"
 #include "stereoscout/host_sim/world.hpp"
-#include "stereoscout/vision/calibration.hpp"
-#include "stereoscout/vision/front_end.hpp"
 
 namespace stereoscout::cli {
 namespace {
@@ -234,15 +233,8 @@ int run_eval_scan(int argc, char** argv) {
     return 1;
   }
   world.people.clear();
-  host_sim::StereoRenderer renderer(world, config.camera, config.sim, static_cast<std::uint64_t>(config.run.seed));
   const host_sim::ObstacleBand band(world, config.sim.floor_tolerance_m, config.robot.height_m);
-  const core::CameraMount mount{config.camera.mount_x_m, config.camera.mount_y_m, config.camera.mount_height_m,
-                                core::degrees_to_radians(config.camera.mount_tilt_deg)};
-  vision::VisionFrontEnd front_end(config.vision, config.robot, vision::calibration_from_config(config.camera), mount);
-  core::StereoFrame frame;
-  frame.allocate(config.camera.width_px, config.camera.height_px);
-  core::DepthScan scan;
-  front_end.allocate_scan(scan);
+  RenderedScanner scanner(world, config);
   ScanScore score;
   const Eigen::Vector2d low = world.bounds_min();
   const Eigen::Vector2d high = world.bounds_max();
@@ -251,10 +243,9 @@ int run_eval_scan(int argc, char** argv) {
       if (band.disc_collides({x, y}, config.robot.radius_m + 0.1)) continue;
       for (long long k = 0; k < headings; ++k) {
         const core::Pose2 pose{x, y, core::wrap_angle(2.0 * core::kPi * static_cast<double>(k) / static_cast<double>(headings))};
-        renderer.render(pose, 0.0, 0.0, static_cast<std::uint32_t>(score.views), frame.left, frame.right, nullptr);
-        if (!front_end.scan(frame, scan).ok()) continue;
+        if (!scanner.scan_at(pose, static_cast<std::uint32_t>(score.views))) continue;
         ++score.views;
-        score_scan(scan, pose, band, within_m, score);
+        score_scan(scanner.scan(), pose, band, within_m, score);
       }
     }
   }
