@@ -8,9 +8,11 @@
 // offices (docs/results.md).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <initializer_list>
+#include <utility>
 
 #include "rendered_scan.hpp"
 #include "stereoscout/core/geometry.hpp"

@@ -51,9 +51,9 @@
 // Given the left image as well, a column with no obstacle looks first for the wall's base
 // (wall_base.hpp): the brightness step where a blank wall meets the floor, within
 // wall_base_within_m on the floor plane (farther than the floor's end is trusted: the row of
-// a step gives its range by geometry, not by the floor's fading texture). It puts the wall where it stands, not where the
-// matched floor happens to end, and it also finds walls faced head-on whose floor strip was
-// not matched at all. It must agree with the stereo: no floor or other point seen more than
+// a step gives its range by geometry, not by the floor's fading texture). It puts the wall
+// where it stands, not where the matched floor happens to end, and it also finds walls
+// faced head-on whose floor strip was not matched at all. It must agree with the stereo: no floor or other point seen more than
 // same_surface_depth_m beyond it, and beyond blank_wall_within_m some floor matched in the
 // column (facing something nearer than the matcher's largest disparity reaches, nothing is
 // matched, and a step near the horizon would pass for a far base). Failing that, the
