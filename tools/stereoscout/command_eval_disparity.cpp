@@ -46,6 +46,10 @@ int run_eval_disparity(int argc, char** argv) {
                    std::to_string(defaults.dense_speckle_max_region_px));
   arguments.option("speckle-step", "PX", "disparity step inside one speckle region",
                    std::to_string(defaults.dense_speckle_max_step_px));
+  arguments.option("baseline", "M",
+                   "stereo baseline in metres, for the speckle filter's area rule (vision.dense_speckle_min_area_m2); "
+                   "0: no area rule, as for pairs without a metric baseline",
+                   "0");
   if (!arguments.parse(argc, argv)) {
     return arguments.exit_code();
   }
@@ -54,7 +58,9 @@ int run_eval_disparity(int argc, char** argv) {
   long long repeat = 0;
   double scale = 1.0;
   long long speckle_region = 0;
-  vision::DenseDisparityParams params = vision::dense_params_from_config(defaults);
+  double baseline_m = 0.0;
+  if (!arguments.get_double("baseline", baseline_m)) return 2;
+  vision::DenseDisparityParams params = vision::dense_params_from_config(defaults, baseline_m);
   if (!arguments.get_int("ndisp", disparities) || !arguments.get_int("window", window) ||
       !arguments.get_int("repeat", repeat) || !arguments.get_double("scale", scale) ||
       !arguments.get_double("uniqueness", params.uniqueness_ratio) ||
@@ -63,10 +69,10 @@ int run_eval_disparity(int argc, char** argv) {
     return 2;
   }
   if (!arguments.has("left") || !arguments.has("right") || disparities < 2 || window < 1 || window % 2 == 0 ||
-      repeat < 1 || scale <= 0.0 || speckle_region < 0 || params.speckle_max_step_px < 0.0) {
+      repeat < 1 || scale <= 0.0 || speckle_region < 0 || params.speckle_max_step_px < 0.0 || !(baseline_m >= 0.0)) {
     std::fprintf(stderr,
                  "stereoscout eval-disparity: need --left and --right, --ndisp >= 2, odd --window, --scale > 0,\n"
-                 "--speckle-region >= 0, --speckle-step >= 0\n");
+                 "--speckle-region >= 0, --speckle-step >= 0, --baseline >= 0\n");
     return 2;
   }
   cv::Mat left;

@@ -15,7 +15,7 @@ using detail::kMaxCensusCost;
 
 }  // namespace
 
-DenseDisparityParams dense_params_from_config(const core::VisionConfig& vision) {
+DenseDisparityParams dense_params_from_config(const core::VisionConfig& vision, double baseline_m) {
   DenseDisparityParams params;
   params.num_disparities = vision.dense_num_disparities;
   params.window_px = vision.dense_window_px;
@@ -24,6 +24,9 @@ DenseDisparityParams dense_params_from_config(const core::VisionConfig& vision) 
   params.lr_tolerance_px = vision.dense_lr_tolerance_px;
   params.speckle_max_region_px = vision.dense_speckle_max_region_px;
   params.speckle_max_step_px = vision.dense_speckle_max_step_px;
+  params.speckle_min_area_m2 = vision.dense_speckle_min_area_m2;
+  params.speckle_area_apart_px = vision.dense_speckle_area_apart_px;
+  params.baseline_m = baseline_m;
   return params;
 }
 
@@ -33,7 +36,9 @@ DenseDisparityMatcher::DenseDisparityMatcher(const DenseDisparityParams& params,
       height_(height_px),
       disparities_(params.num_disparities),
       radius_(params.window_px / 2),
-      speckle_filter_({params.speckle_max_region_px, params.speckle_max_step_px}, width_px, height_px) {
+      speckle_filter_({params.speckle_max_region_px, params.speckle_max_step_px, params.speckle_min_area_m2, params.baseline_m,
+                       params.speckle_area_apart_px},
+                      width_px, height_px) {
   STEREOSCOUT_CHECK(width_px > 0 && height_px > 0 && disparities_ >= 2, "DenseDisparityMatcher: bad size");
   const auto pixels = static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_);
   const auto row_costs = static_cast<std::size_t>(disparities_) * static_cast<std::size_t>(width_);

@@ -19,7 +19,7 @@ VisionFrontEnd::VisionFrontEnd(const core::VisionConfig& vision, const core::Rob
       matcher_(match_params_from_config(vision), calibration.height_px, max_keys_),
       matches_(max_keys_),
       index_(index_params_from_config(vision)),
-      dense_(dense_params_from_config(vision), calibration.width_px, calibration.height_px),
+      dense_(dense_params_from_config(vision, calibration.baseline_m), calibration.width_px, calibration.height_px),
       scanner_(scan_params_from_config(vision, robot), calibration, mount) {
   dense_.allocate_output(disparity_);
 }

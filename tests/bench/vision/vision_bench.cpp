@@ -117,7 +117,7 @@ BENCHMARK(BM_IndexLookup)
 
 // simd 1: the build of the inner loops the CPU runs best (label: which); 0: the portable one.
 void BM_DenseDisparity(benchmark::State& state) {
-  DenseDisparityParams params = dense_params_from_config(core::VisionConfig{});
+  DenseDisparityParams params = dense_params_from_config(core::VisionConfig{}, core::CameraConfig{}.baseline_m);
   params.allow_simd = state.range(0) != 0;
   DenseDisparityMatcher matcher(params, 640, 480);
   cv::Mat disparity;
@@ -131,7 +131,7 @@ void BM_DenseDisparity(benchmark::State& state) {
 BENCHMARK(BM_DenseDisparity)->Arg(1)->Arg(0)->ArgName("simd")->Unit(benchmark::kMillisecond);
 
 void BM_ObstacleScan(benchmark::State& state) {
-  DenseDisparityMatcher matcher(dense_params_from_config(core::VisionConfig{}), 640, 480);
+  DenseDisparityMatcher matcher(dense_params_from_config(core::VisionConfig{}, core::CameraConfig{}.baseline_m), 640, 480);
   cv::Mat disparity;
   matcher.allocate_output(disparity);
   matcher.compute(room_view().frame.left, room_view().frame.right, disparity);

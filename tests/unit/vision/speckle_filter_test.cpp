@@ -51,6 +51,55 @@ TEST(SpeckleFilter, StepDecidesWhatIsOneRegionAndZeroSwitchesItOff) {
   EXPECT_EQ(cv::countNonZero(untouched != scene()), 0);
 }
 
+// Two 20 x 20 blocks of 400 pixels each, more than the pixel limit: at disparity 60 with a
+// 0.1 m baseline each pixel spans 1/600 m, so the near block is a surface of 11 cm^2, at
+// disparity 10 one of 400 cm^2. A region at disparity 0 (infinity) is larger than any limit.
+TEST(SpeckleFilter, AnAreaRuleRemovesASmallSurfaceNearTheCameraWhateverItsPixels) {
+  const auto blocks = [] {
+    cv::Mat disparity(50, 60, CV_32FC1, cv::Scalar(kInvalidDisparity));
+    disparity(cv::Rect(2, 2, 20, 20)).setTo(60.0F);
+    disparity(cv::Rect(30, 2, 20, 20)).setTo(10.0F);
+    disparity(cv::Rect(2, 28, 20, 20)).setTo(0.0F);
+    return disparity;
+  };
+  cv::Mat disparity = blocks();
+  SpeckleFilter filter({100, 1.0, 0.0025, 0.1}, 60, 50);
+  const core::AllocationScope scope;
+  EXPECT_EQ(filter.apply(disparity, kInvalidDisparity), 400U);
+  EXPECT_EQ(scope.allocations(), 0U);
+  EXPECT_EQ(disparity.at<float>(10, 10), kInvalidDisparity);
+  EXPECT_EQ(disparity.at<float>(10, 40), 10.0F);
+  EXPECT_EQ(disparity.at<float>(40, 10), 0.0F);
+  // A 10 cm^2 limit keeps the near block; without a baseline, or a limit, no area rule.
+  for (const SpeckleFilterParams params : {SpeckleFilterParams{100, 1.0, 0.001, 0.1}, SpeckleFilterParams{100, 1.0, 0.0025, 0.0},
+                                           SpeckleFilterParams{100, 1.0, 0.0, 0.1}}) {
+    cv::Mat kept = blocks();
+    SpeckleFilter other(params, 60, 50);
+    EXPECT_EQ(other.apply(kept, kInvalidDisparity), 0U) << params.min_area_m2 << " m^2, baseline " << params.baseline_m;
+  }
+  // With no pixel limit the area rule alone still runs.
+  cv::Mat area_only = blocks();
+  SpeckleFilter only({0, 1.0, 0.0025, 0.1}, 60, 50);
+  EXPECT_EQ(only.apply(area_only, kInvalidDisparity), 400U);
+}
+
+// A near surface cut into pieces by holes (a brick wall's repeated courses) keeps its pieces:
+// each has another beside it at about its disparity. A piece with only farther surfaces around
+// it goes.
+TEST(SpeckleFilter, TheAreaRuleKeepsPiecesOfOneSurfaceAndRemovesAPieceInFrontOfItsSurroundings) {
+  cv::Mat disparity(50, 100, CV_32FC1, cv::Scalar(kInvalidDisparity));
+  disparity(cv::Rect(2, 2, 20, 20)).setTo(60.0F);
+  disparity(cv::Rect(26, 2, 20, 20)).setTo(58.5F);  // 4 px of hole between, 1.5 px farther
+  disparity(cv::Rect(70, 24, 20, 20)).setTo(60.0F);
+  disparity(cv::Rect(70, 45, 28, 5)).setTo(20.0F);  // a far surface below it: 350 cm^2
+  SpeckleFilter filter({100, 1.0, 0.0025, 0.1, 3.0}, 100, 50);
+  EXPECT_EQ(filter.apply(disparity, kInvalidDisparity), 400U);
+  EXPECT_EQ(disparity.at<float>(10, 10), 60.0F);
+  EXPECT_EQ(disparity.at<float>(10, 30), 58.5F);
+  EXPECT_EQ(disparity.at<float>(30, 80), kInvalidDisparity);
+  EXPECT_EQ(disparity.at<float>(47, 80), 20.0F);
+}
+
 TEST(SpeckleFilter, ResultDoesNotDependOnThePixelOrder) {
   // The regions are connected components, so a transposed map gives the transposed result.
   cv::Mat disparity = scene();
@@ -61,6 +110,15 @@ TEST(SpeckleFilter, ResultDoesNotDependOnThePixelOrder) {
   transposed_filter.apply(transposed, kInvalidDisparity);
   const cv::Mat back = transposed.t();
   EXPECT_EQ(cv::countNonZero(disparity != back), 0);
+  // With the area rule too: the 12 x 12 block at disparity 25 is 23 cm^2 in front of the plane.
+  cv::Mat with_area = scene();
+  cv::Mat with_area_transposed = scene().t();
+  SpeckleFilter area_filter({20, 1.0, 0.0025, 0.1}, 50, 40);
+  SpeckleFilter area_transposed_filter({20, 1.0, 0.0025, 0.1}, 40, 50);
+  EXPECT_EQ(area_filter.apply(with_area, kInvalidDisparity), 9U + 2U + 144U);
+  area_transposed_filter.apply(with_area_transposed, kInvalidDisparity);
+  const cv::Mat area_back = with_area_transposed.t();
+  EXPECT_EQ(cv::countNonZero(with_area != area_back), 0);
 }
 
 }  // namespace

@@ -12,7 +12,8 @@
 //   - the left-right check fails (the right image's own winner disagrees),
 //   - the window or the search range leaves the image, or
 //   - it lies in a small island of similar disparities (SpeckleFilter): scattered wrong
-//     winners on weak texture, which would otherwise become phantom obstacles in the scan.
+//     winners on weak texture, or a patch of a repeated texture matched at a wrong, large
+//     disparity, which would otherwise become phantom obstacles in the scan.
 // A pixel rejected for lack of texture holds kUntexturedDisparity rather than
 // kInvalidDisparity: the scan tells a blank surface (no texture to match) from a pixel stereo
 // was confused on (an occlusion edge, a repeated pattern). Both are negative: `d > 0` is the
@@ -43,12 +44,17 @@ struct DenseDisparityParams {
   int lr_tolerance_px = 1;
   int speckle_max_region_px = 100;  // 0: no speckle filter
   double speckle_max_step_px = 1.0;
+  // Regions of a smaller surface are removed too (SpeckleFilterParams); 0: no area rule.
+  double speckle_min_area_m2 = 0.0;
+  double speckle_area_apart_px = 3.0;
+  double baseline_m = 0.0;
   // Use the CPU's vector and popcount instructions where present (same output, bit for bit);
   // off: the portable build of the inner loops (tests compare the two).
   bool allow_simd = true;
 };
 
-DenseDisparityParams dense_params_from_config(const core::VisionConfig& vision);
+// baseline_m: the rig's, for the speckle filter's area rule (0: no area rule).
+DenseDisparityParams dense_params_from_config(const core::VisionConfig& vision, double baseline_m);
 
 struct DenseDisparityStats {
   std::size_t pixels = 0;

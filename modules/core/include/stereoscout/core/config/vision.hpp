@@ -37,6 +37,8 @@ struct VisionConfig {
   int dense_lr_tolerance_px = 1;
   int dense_speckle_max_region_px = 100;
   double dense_speckle_max_step_px = 1.0;
+  double dense_speckle_min_area_m2 = 0.0025;
+  double dense_speckle_area_apart_px = 3.0;
   int scan_min_obstacle_pixels = 4;
   double scan_same_surface_depth_m = 0.15;
   double scan_blank_wall_within_m = 1.5;
@@ -76,6 +78,8 @@ inline void describe(ConfigVisitor& v, VisionConfig& c) {
   v.integer_field("dense_lr_tolerance_px", c.dense_lr_tolerance_px, {0, 16, "px", "Left-right consistency: largest difference between the left and the right disparity."});
   v.integer_field("dense_speckle_max_region_px", c.dense_speckle_max_region_px, {0, 1000000, "px", "Speckle filter: a 4-connected region of similar disparities with at most this many pixels is marked invalid (scattered wrong matches on weak texture); 0 switches it off."});
   v.number("dense_speckle_max_step_px", c.dense_speckle_max_step_px, {0.0, 16.0, "px", "Speckle filter: neighbouring pixels whose disparities differ by at most this belong to one region."});
+  v.number("dense_speckle_min_area_m2", c.dense_speckle_min_area_m2, {0.0, 1.0, "m^2", "Speckle filter: a region is also marked invalid when the surface it stands for, at the depth its disparities give, is smaller than this (pixels x (baseline / disparity)^2): look-alike book spines matched at a wrong, large disparity form regions of a few hundred pixels but a few square centimetres, phantom obstacles within a metre of the camera; 0 switches the rule off."});
+  v.number("dense_speckle_area_apart_px", c.dense_speckle_area_apart_px, {0.0, 64.0, "px", "Speckle filter's area rule: a small region is removed only when no valid pixel around it (within its own width and height) has a disparity above the region's smallest less this. A wrong match stands in front of everything around it; a piece of a real near surface cut by holes (a brick wall's repeated courses) or into strips (seen at a slant) has pieces of the same surface beside it."});
   v.integer_field("scan_min_obstacle_pixels", c.scan_min_obstacle_pixels, {1, 100, "px", "Pixels of a column that must lie above the floor before the nearest of them counts as an obstacle (rejects isolated mismatches)."});
   v.number("scan_same_surface_depth_m", c.scan_same_surface_depth_m, {0.0, 2.0, "m", "How far behind a column's nearest obstacle point a point at the camera's height still counts as the same obstacle (a person's legs and chest, a wall's face); such an obstacle is in view at every range, so the grid clears its cell when a later view sees through it."});
   v.number("scan_blank_wall_within_m", c.scan_blank_wall_within_m, {0.0, 100.0, "m", "A column whose floor ends nearer than this with nothing seen beyond it (at any height) reports an obstacle where the floor ends: a blank wall gives stereo no disparity, and without this the robot drives into it. Farther out the floor's texture fades (the office's tiles at about 2 m), so its end is no wall there; 0 turns the rule off."});
