@@ -116,8 +116,11 @@ BENCHMARK(BM_IndexLookup)
     ->Unit(benchmark::kMicrosecond);
 
 // simd 1: the build of the inner loops the CPU runs best (label: which); 0: the portable one.
+// area_rule 0: the speckle filter without its area rule (vision.dense_speckle_min_area_m2 = 0).
 void BM_DenseDisparity(benchmark::State& state) {
-  DenseDisparityParams params = dense_params_from_config(core::VisionConfig{}, core::CameraConfig{}.baseline_m);
+  core::VisionConfig vision;
+  if (state.range(1) == 0) vision.dense_speckle_min_area_m2 = 0.0;
+  DenseDisparityParams params = dense_params_from_config(vision, core::CameraConfig{}.baseline_m);
   params.allow_simd = state.range(0) != 0;
   DenseDisparityMatcher matcher(params, 640, 480);
   cv::Mat disparity;
@@ -128,7 +131,12 @@ void BM_DenseDisparity(benchmark::State& state) {
   state.counters["density"] = static_cast<double>(matcher.stats().valid) / static_cast<double>(matcher.stats().pixels);
   state.SetLabel(matcher.kernels_name());
 }
-BENCHMARK(BM_DenseDisparity)->Arg(1)->Arg(0)->ArgName("simd")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DenseDisparity)
+    ->Args({1, 1})
+    ->Args({1, 0})
+    ->Args({0, 1})
+    ->ArgNames({"simd", "area_rule"})
+    ->Unit(benchmark::kMillisecond);
 
 void BM_ObstacleScan(benchmark::State& state) {
   DenseDisparityMatcher matcher(dense_params_from_config(core::VisionConfig{}, core::CameraConfig{}.baseline_m), 640, 480);
