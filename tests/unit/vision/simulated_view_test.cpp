@@ -295,22 +295,24 @@ constexpr double kAhead_m = 1.2;
 
 // A surface's edge may fall one column either side in the scan and in the ground truth (the
 // arm64 build's rendering puts the dividing wall's end one column over in one view): a column
-// is a phantom when its obstacle is more than 0.3 m nearer than the truth in it and in both
-// neighbouring columns.
-bool nearer_than_truth(const core::DepthScan& scan, const core::DepthScan& truth, std::size_t u, std::size_t v) {
+// whose obstacle is more than 0.3 m nearer than the truth is a phantom unless a neighbouring
+// column's truth ends there (no more than 0.3 m beyond it).
+bool truth_reaches(const core::DepthScan& scan, const core::DepthScan& truth, std::size_t u, std::size_t v) {
   return truth.columns[v].kind != Kind::invalid &&
-         range_of(scan, scan.columns[u]) < range_of(truth, truth.columns[v]) - 0.3;
+         range_of(scan, scan.columns[u]) >= range_of(truth, truth.columns[v]) - 0.3;
 }
 
 int phantoms_within(double range_m, const core::DepthScan& scan, const core::DepthScan& truth) {
   int count = 0;
   const std::size_t columns = scan.columns.size();
   for (std::size_t u = 0; u < columns; ++u) {
-    if (scan.columns[u].kind != Kind::obstacle || range_of(scan, scan.columns[u]) >= range_m) continue;
-    const bool phantom = nearer_than_truth(scan, truth, u, u) &&
-                         (u == 0 || nearer_than_truth(scan, truth, u, u - 1)) &&
-                         (u + 1 == columns || nearer_than_truth(scan, truth, u, u + 1));
-    count += phantom ? 1 : 0;
+    if (scan.columns[u].kind != Kind::obstacle || truth.columns[u].kind == Kind::invalid ||
+        range_of(scan, scan.columns[u]) >= range_m || truth_reaches(scan, truth, u, u)) {
+      continue;
+    }
+    const bool edge = (u > 0 && truth_reaches(scan, truth, u, u - 1)) ||
+                      (u + 1 < columns && truth_reaches(scan, truth, u, u + 1));
+    count += edge ? 0 : 1;
   }
   return count;
 }
