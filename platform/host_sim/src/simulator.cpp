@@ -62,6 +62,13 @@ int Simulator::step_runs_into(const Eigen::Vector2d& here, const Eigen::Vector2d
   return kNothing;
 }
 
+bool Simulator::still_touching(int target) const {
+  if (target == kStaticObstacle) return obstacles_.disc_collides(pose_.translation(), robot_.radius_m + kContactClearance_m);
+  const auto i = static_cast<std::size_t>(target);
+  const double distance = (world_.person_position(i, time_s()) - pose_.translation()).norm();
+  return distance < robot_.radius_m + world_.people[i].radius + kContactClearance_m;
+}
+
 void Simulator::count_person_contacts() {
   for (std::size_t i = 0; i < world_.people.size(); ++i) {
     const double distance = (world_.person_position(i, time_s()) - pose_.translation()).norm();
@@ -96,13 +103,14 @@ void Simulator::integrate(double dt_s) {
         if (hit != kStaticObstacle) ++person_collision_events_;
       }
       in_contact_ = true;
+      contact_with_ = hit;
       command_ = core::DriveCommand{};
     } else {
       pose_ = next;
       distance_m_ += std::abs(travel);
       // The contact lasts until the robot has moved clear: sliding along a wall, refused step
       // after step, is one contact.
-      in_contact_ = in_contact_ && obstacles_.disc_collides(pose_.translation(), robot_.radius_m + kContactClearance_m);
+      in_contact_ = in_contact_ && still_touching(contact_with_);
     }
   }
   count_person_contacts();

@@ -268,6 +268,34 @@ TEST(Simulator, DrivingIntoAPersonIsOurCollision) {
   EXPECT_NEAR(simulator.true_pose().x, 12.0 - 0.25 - 0.35, 0.002);
 }
 
+TEST(Simulator, TurningAndPushingIntoTheSamePersonAgainIsOneContact) {
+  // The robot runs into a person standing at (12, 10), turns a little in place (a free step:
+  // it does not move clear of them) and pushes on: the same encounter. Backing 12 cm away and
+  // driving in again is a new one.
+  const World world =
+      load_or_fail(hall_yaml(false) + "people:\n  - {waypoints: [[12, 10], [12, 10]], speed: 0.5}\n");
+  Simulator simulator(world, core::RobotConfig{}, core::CameraConfig{}, noiseless(), 1);
+  simulator.command({0.12, 0.0});
+  simulator.step(30.0);
+  ASSERT_EQ(simulator.person_collision_event_count(), 1U);
+  simulator.command({0.0, 0.1});
+  simulator.step(0.5);
+  simulator.command({0.12, 0.0});
+  simulator.step(1.0);
+  EXPECT_EQ(simulator.collision_count(), 2U);
+  EXPECT_EQ(simulator.collision_event_count(), 1U);
+  EXPECT_EQ(simulator.person_collision_event_count(), 1U);
+  simulator.command({0.0, -0.1});
+  simulator.step(0.5);
+  simulator.command({-0.12, 0.0});
+  simulator.step(1.0);
+  simulator.command({0.12, 0.0});
+  simulator.step(3.0);
+  EXPECT_EQ(simulator.collision_count(), 3U);
+  EXPECT_EQ(simulator.collision_event_count(), 2U);
+  EXPECT_EQ(simulator.person_collision_event_count(), 2U);
+}
+
 TEST(Simulator, LowAndHighObstaclesFollowTheHeightBand) {
   // A 1 cm cable protector is driven over; a shelf at 1.5 m is passed under (robot 1.2 m);
   // a 10 cm box blocks.

@@ -10,8 +10,8 @@
 // integration step would bring the robot's disc into an obstacle of its height band, or into
 // a person it does not touch where it stands, the robot stays, its command is zeroed and
 // collision_count() goes up by one; a new command lets it move again. collision_event_count()
-// counts contacts: a refused step when the robot was clear (2 cm) of every obstacle since the
-// last one; pushing on, or sliding along a wall, refused step after step, is one contact. People walk their
+// counts contacts: a refused step when the robot was clear (2 cm) of what it last ran into
+// (wall or person) since that contact; pushing on, or sliding along a wall, refused step after step, is one contact. People walk their
 // loops regardless of the robot: a person who walks into the robot (stopped, turning, or
 // overtaken from behind) is the person's collision, not the robot's; each such contact
 // (start of an overlap) is counted in person_contact_count(), and lasts until they walk on
@@ -101,6 +101,8 @@ class Simulator {
   // the index of a person it does not touch at `here`.
   static constexpr int kNothing = -2;
   int step_runs_into(const Eigen::Vector2d& here, const Eigen::Vector2d& there) const;
+  // Whether the robot is still within 2 cm of what it ran into (kStaticObstacle or a person).
+  bool still_touching(int target) const;
   void count_person_contacts();
   void emit_odometry();
 
@@ -124,6 +126,7 @@ class Simulator {
   std::uint64_t collision_events_ = 0;
   std::uint64_t person_collision_events_ = 0;
   bool in_contact_ = false;  // a step was refused and the robot has not moved clear since
+  int contact_with_ = kNothing;  // what that step ran into
   std::array<CollisionEvent, kCollisionLogSize> collision_log_{};
   std::uint64_t person_contacts_ = 0;
   std::vector<std::uint8_t> person_in_contact_;  // one per person, sized at construction; set from the
