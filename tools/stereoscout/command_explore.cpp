@@ -77,8 +77,9 @@ int run_explore(int argc, char** argv) {
   context.person_collision_events = board.simulator().person_collision_event_count();
   for (std::size_t i = 0; i < board.simulator().collision_log_size(); ++i) {
     const host_sim::Simulator::CollisionEvent& event = board.simulator().collision_log(i);
-    context.collision_log.push_back(
-        {event.time_s, event.pose.x, event.pose.y, event.pose.theta, static_cast<double>(event.person)});
+    context.collision_log.push_back({event.time_s, event.pose.x, event.pose.y, event.pose.theta,
+                                     static_cast<double>(event.person), event.bearing_rad, event.last_in_view_s,
+                                     event.in_view_distance_m});
   }
   context.person_contacts = board.simulator().person_contact_count();
   context.distance_m = board.simulator().distance_travelled_m();

@@ -28,7 +28,7 @@ struct RunContext {
   std::uint64_t person_collision_events = 0;   // those of them into a person
   // The first contacts: time s, true x, y, theta, and the person run into (their index in the
   // world's people) or -1 for a static obstacle.
-  std::vector<std::array<double, 5>> collision_log;
+  std::vector<std::array<double, 8>> collision_log;  // docs/report.md, `collision_log`
   std::uint64_t person_contacts = 0;
   double distance_m = 0.0;                     // driven (simulator), 0 if unknown
   double wall_time_s = 0.0;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <deque>
+#include <limits>
 
 namespace stereoscout::host_sim {
 namespace {
@@ -14,11 +15,15 @@ bool in_band(double z_min, double z_max, double band_low, double band_high) {
 
 }  // namespace
 
-double distance_to_segment(const Eigen::Vector2d& point, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+Eigen::Vector2d nearest_on_segment(const Eigen::Vector2d& point, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   const Eigen::Vector2d edge = b - a;
   const double length_squared = edge.squaredNorm();
   const double s = length_squared > 0.0 ? std::clamp((point - a).dot(edge) / length_squared, 0.0, 1.0) : 0.0;
-  return (a + s * edge - point).norm();
+  return a + s * edge;
+}
+
+double distance_to_segment(const Eigen::Vector2d& point, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return (nearest_on_segment(point, a, b) - point).norm();
 }
 
 ObstacleBand::ObstacleBand(const World& world, double band_low_m, double band_high_m) {
@@ -50,6 +55,43 @@ bool ObstacleBand::disc_collides(const Eigen::Vector2d& point, double radius) co
     if ((point - disc.head<2>()).norm() < radius + disc.z()) return true;
   }
   return false;
+}
+
+bool ObstacleBand::blocks_line(const Eigen::Vector2d& a, const Eigen::Vector2d& b) const {
+  const auto cross = [](const Eigen::Vector2d& u, const Eigen::Vector2d& v) { return u.x() * v.y() - u.y() * v.x(); };
+  const Eigen::Vector2d ray = b - a;
+  for (const Segment& segment : segments_) {
+    const Eigen::Vector2d edge = segment.b - segment.a;
+    const double denominator = cross(ray, edge);
+    if (denominator == 0.0) continue;  // parallel: a grazing line of sight is not blocked
+    const double along_ray = cross(segment.a - a, edge) / denominator;
+    const double along_edge = cross(segment.a - a, ray) / denominator;
+    if (along_ray > 0.0 && along_ray < 1.0 && along_edge >= 0.0 && along_edge <= 1.0) return true;
+  }
+  for (const Eigen::Vector3d& disc : discs_) {
+    if (distance_to_segment(disc.head<2>(), a, b) < disc.z()) return true;
+  }
+  return false;
+}
+
+Eigen::Vector2d ObstacleBand::nearest_point(const Eigen::Vector2d& point) const {
+  Eigen::Vector2d nearest = point;
+  double best = std::numeric_limits<double>::infinity();
+  for (const Segment& segment : segments_) {
+    const Eigen::Vector2d candidate = nearest_on_segment(point, segment.a, segment.b);
+    const double distance = (candidate - point).norm();
+    if (distance >= best) continue;
+    best = distance;
+    nearest = candidate;
+  }
+  for (const Eigen::Vector3d& disc : discs_) {
+    const Eigen::Vector2d offset = point - disc.head<2>();
+    const double distance = offset.norm();
+    if (distance <= 0.0 || distance - disc.z() >= best) continue;
+    best = distance - disc.z();
+    nearest = disc.head<2>() + offset * (disc.z() / distance);
+  }
+  return nearest;
 }
 
 Eigen::Vector2i GroundTruthGrid::cell_of(const Eigen::Vector2d& point) const {

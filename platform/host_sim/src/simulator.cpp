@@ -24,8 +24,11 @@ Simulator::Simulator(const World& world, const core::RobotConfig& robot, const c
       sim_(sim),
       seed_(seed),
       obstacles_(world, sim.floor_tolerance_m, robot.height_m),
+      sight_blockers_(world, camera.mount_height_m, camera.mount_height_m),
       odometry_queue_(static_cast<std::size_t>(sim.odometry_queue)),
-      person_in_contact_(world.people.size(), 0) {
+      person_in_contact_(world.people.size(), 0),
+      person_last_in_view_s_(world.people.size(), -1.0),
+      person_in_view_distance_m_(world.people.size(), -1.0) {
   teleport(world.start);
 }
 
@@ -60,6 +63,37 @@ int Simulator::step_runs_into(const Eigen::Vector2d& here, const Eigen::Vector2d
     if ((person - there).norm() < limit && (person - here).norm() >= limit) return static_cast<int>(i);
   }
   return kNothing;
+}
+
+Simulator::CollisionEvent Simulator::describe_collision(int hit) const {
+  CollisionEvent event{time_s(), pose_, hit};
+  Eigen::Vector2d target = obstacles_.nearest_point(pose_.translation());
+  if (hit != kStaticObstacle) {
+    const auto i = static_cast<std::size_t>(hit);
+    target = world_.person_position(i, time_s());
+    event.last_in_view_s = person_last_in_view_s_[i];
+    event.in_view_distance_m = person_in_view_distance_m_[i];
+  }
+  const Eigen::Vector2d offset = target - pose_.translation();
+  event.bearing_rad = core::wrap_angle(std::atan2(offset.y(), offset.x()) - pose_.theta);
+  return event;
+}
+
+void Simulator::note_frame_captured() {
+  const double heading = pose_.theta + pan_rad_;
+  const Eigen::Vector2d camera = pose_.transform_point({camera_.mount_x_m, camera_.mount_y_m});
+  const double half_view = std::atan2(0.5 * camera_.width_px, camera_.focal_px);
+  for (std::size_t i = 0; i < world_.people.size(); ++i) {
+    const Eigen::Vector2d offset = world_.person_position(i, time_s()) - camera;
+    const double distance = offset.norm();
+    const double radius = world_.people[i].radius;
+    const double half_width = distance > radius ? std::asin(radius / distance) : core::kPi;
+    const double bearing = core::wrap_angle(std::atan2(offset.y(), offset.x()) - heading);
+    if (std::abs(bearing) - half_width >= half_view) continue;
+    if (sight_blockers_.blocks_line(camera, camera + offset)) continue;
+    person_last_in_view_s_[i] = time_s();
+    person_in_view_distance_m_[i] = distance;
+  }
 }
 
 bool Simulator::still_touching(int target) const {
@@ -98,7 +132,7 @@ void Simulator::integrate(double dt_s) {
     if (hit != kNothing) {
       ++collisions_;
       if (!in_contact_) {
-        if (collision_events_ < kCollisionLogSize) collision_log_[collision_events_] = {time_s(), pose_, hit};
+        if (collision_events_ < kCollisionLogSize) collision_log_[collision_events_] = describe_collision(hit);
         ++collision_events_;
         if (hit != kStaticObstacle) ++person_collision_events_;
       }
@@ -169,6 +203,7 @@ core::Status SimCamera::capture_with_depth(core::StereoFrame& frame, cv::Mat* de
   }
   renderer_.render(simulator_.true_pose(), simulator_.pan_rad(), simulator_.time_s(), static_cast<std::uint32_t>(frames_),
                    frame.left, frame.right, depth_right);
+  simulator_.note_frame_captured();
   frame.timestamp_ns = simulator_.time_ns();
   frame.sequence = frames_++;
   frame.pan_rad = simulator_.pan_rad();

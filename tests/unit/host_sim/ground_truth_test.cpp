@@ -23,6 +23,24 @@ std::uint8_t cell_at(const GroundTruthGrid& grid, double x, double y) {
   return grid.at(cell.x(), cell.y());
 }
 
+TEST(GroundTruth, LinesOfSightAndNearestObstaclePointFollowTheBand) {
+  // The room is 10 x 6; a low box at (2, 2) is in the robot's band and below a camera at 0.6 m,
+  // a pillar at (5, 4) reaches above it.
+  const World world = load_or_fail(room_yaml("brick") + "boxes:\n  - {center: [2, 2], size: [0.4, 0.4], z: [0, 0.1]}\n"
+                                                        "cylinders:\n  - {center: [5, 4], radius: 0.2, z: [0, 0.9]}\n");
+  const ObstacleBand robot_band(world, kFloorTolerance, kRobotHeight);
+  const ObstacleBand camera_height(world, 0.6, 0.6);
+  EXPECT_TRUE(robot_band.blocks_line({1.0, 2.0}, {3.0, 2.0}));   // through the low box
+  EXPECT_FALSE(camera_height.blocks_line({1.0, 2.0}, {3.0, 2.0}));  // over it
+  EXPECT_TRUE(camera_height.blocks_line({4.0, 4.1}, {6.0, 4.1}));   // through the pillar
+  EXPECT_FALSE(camera_height.blocks_line({4.0, 4.5}, {6.0, 4.5}));  // beside it
+  EXPECT_TRUE(camera_height.blocks_line({5.0, 5.0}, {5.0, 7.0}));   // out through the north wall
+  EXPECT_FALSE(camera_height.blocks_line({1.0, 1.0}, {9.0, 5.0}));  // across the room
+  EXPECT_NEAR((robot_band.nearest_point({2.0, 1.5}) - Eigen::Vector2d(2.0, 1.8)).norm(), 0.0, 1e-9);
+  EXPECT_NEAR((robot_band.nearest_point({5.0, 4.5}) - Eigen::Vector2d(5.0, 4.2)).norm(), 0.0, 1e-9);
+  EXPECT_NEAR((robot_band.nearest_point({9.7, 3.0}) - Eigen::Vector2d(10.0, 3.0)).norm(), 0.0, 1e-9);
+}
+
 TEST(GroundTruth, HeightBandDecidesWhatIsAnObstacle) {
   const World world = load_or_fail(room_yaml("brick") +
                                    "boxes:\n  - {center: [2, 2], size: [0.4, 0.4], z: [0, 0.1]}\n"   // low box: blocks

@@ -268,6 +268,56 @@ TEST(Simulator, DrivingIntoAPersonIsOurCollision) {
   EXPECT_NEAR(simulator.true_pose().x, 12.0 - 0.25 - 0.35, 0.002);
 }
 
+TEST(Simulator, TheCollisionLogSaysWhereThePersonWasAndWhenTheyWereLastInView) {
+  // The robot at (10, 10) faces east. Person 0 stands 2 m ahead, person 1 2 m to its left,
+  // person 2 4 m to its left behind a wall from (9, 13) to (11, 13).
+  const World world = load_or_fail(hall_yaml(false) + "  - {points: [[9, 13], [11, 13]]}\n"
+                                   "people:\n  - {waypoints: [[12, 10], [12, 10]], speed: 0.5}\n"
+                                   "  - {waypoints: [[10, 12], [10, 12]], speed: 0.5}\n"
+                                   "  - {waypoints: [[10, 14], [10, 14]], speed: 0.5}\n");
+  Simulator simulator(world, core::RobotConfig{}, core::CameraConfig{}, noiseless(), 1);
+  simulator.step(1.0);
+  simulator.note_frame_captured();  // person 0 only
+  simulator.command_pan(1.2);       // the camera turned 69 degrees to the left
+  simulator.step(5.0);
+  simulator.note_frame_captured();  // person 1 only: person 2 is behind the wall
+  const double camera_forward = core::CameraConfig{}.mount_x_m;
+
+  simulator.command({0.12, 0.0});
+  simulator.step(30.0);
+  ASSERT_EQ(simulator.collision_log_size(), 1U);
+  EXPECT_EQ(simulator.collision_log(0).person, 0);
+  EXPECT_NEAR(simulator.collision_log(0).bearing_rad, 0.0, 1e-9);
+  EXPECT_DOUBLE_EQ(simulator.collision_log(0).last_in_view_s, 1.0);
+  EXPECT_NEAR(simulator.collision_log(0).in_view_distance_m, 2.0 - camera_forward, 1e-9);
+
+  simulator.teleport(core::Pose2{10.0, 10.0, core::kPi / 2.0});  // facing person 1
+  simulator.command({0.12, 0.0});
+  simulator.step(30.0);
+  ASSERT_EQ(simulator.collision_log_size(), 2U);
+  EXPECT_EQ(simulator.collision_log(1).person, 1);
+  EXPECT_NEAR(simulator.collision_log(1).bearing_rad, 0.0, 1e-9);
+  EXPECT_DOUBLE_EQ(simulator.collision_log(1).last_in_view_s, 6.0);
+  EXPECT_NEAR(simulator.collision_log(1).in_view_distance_m, std::hypot(2.0, camera_forward), 1e-9);
+
+  simulator.teleport(core::Pose2{12.0, 14.5, core::kPi});  // person 2 ahead and to the left
+  simulator.command({0.12, 0.0});
+  simulator.step(30.0);
+  ASSERT_EQ(simulator.collision_log_size(), 3U);
+  EXPECT_EQ(simulator.collision_log(2).person, 2);
+  EXPECT_GT(simulator.collision_log(2).bearing_rad, 0.5);  // ahead to the left (south, facing west)
+  EXPECT_EQ(simulator.collision_log(2).last_in_view_s, -1.0);
+  EXPECT_EQ(simulator.collision_log(2).in_view_distance_m, -1.0);
+  // A static obstacle's bearing is to its nearest point.
+  simulator.teleport(core::Pose2{10.0, 19.0, core::kPi / 2.0 + 0.5});
+  simulator.command({0.12, 0.0});
+  simulator.step(30.0);
+  ASSERT_EQ(simulator.collision_log_size(), 4U);
+  EXPECT_EQ(simulator.collision_log(3).person, Simulator::kStaticObstacle);
+  EXPECT_NEAR(simulator.collision_log(3).bearing_rad, -0.5, 1e-9);
+  EXPECT_EQ(simulator.collision_log(3).last_in_view_s, -1.0);
+}
+
 TEST(Simulator, TurningAndPushingIntoTheSamePersonAgainIsOneContact) {
   // The robot runs into a person standing at (12, 10), turns a little in place (a free step:
   // it does not move clear of them) and pushes on: the same encounter. Backing 12 cm away and

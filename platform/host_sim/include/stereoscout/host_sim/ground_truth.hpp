@@ -22,6 +22,10 @@ class ObstacleBand {
 
   // True when a disc of `radius` centred at `point` overlaps a blocking obstacle.
   bool disc_collides(const Eigen::Vector2d& point, double radius) const;
+  // True when the straight line from `a` to `b` passes through an obstacle (a line of sight).
+  bool blocks_line(const Eigen::Vector2d& a, const Eigen::Vector2d& b) const;
+  // The obstacle point nearest to `point` (`point` itself when the band is empty).
+  Eigen::Vector2d nearest_point(const Eigen::Vector2d& point) const;
 
   struct Segment {
     Eigen::Vector2d a;
@@ -35,6 +39,7 @@ class ObstacleBand {
   std::vector<Eigen::Vector3d> discs_;                    // cylinders in the band: (x, y, radius)
 };
 
+Eigen::Vector2d nearest_on_segment(const Eigen::Vector2d& point, const Eigen::Vector2d& a, const Eigen::Vector2d& b);
 double distance_to_segment(const Eigen::Vector2d& point, const Eigen::Vector2d& a, const Eigen::Vector2d& b);
 
 // A grid over the world's bounds: cell (ix, iy) covers [origin + ix * resolution, ...);

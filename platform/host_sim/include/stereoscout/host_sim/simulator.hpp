@@ -81,6 +81,11 @@ class Simulator {
     double time_s = 0.0;
     core::Pose2 pose;
     int person = kStaticObstacle;
+    double bearing_rad = 0.0;  // of the person's centre (or the obstacle's nearest point), from the heading
+    // For a person: when they were last in a captured frame (note_frame_captured) and how far
+    // from the camera; -1 when never or for a static obstacle.
+    double last_in_view_s = -1.0;
+    double in_view_distance_m = -1.0;
   };
   static constexpr std::size_t kCollisionLogSize = 32;
   std::size_t collision_log_size() const { return std::min<std::size_t>(collision_events_, kCollisionLogSize); }
@@ -94,6 +99,10 @@ class Simulator {
 
   // Places the robot (start-up and tests); resets the odometry pose to the same pose.
   void teleport(const core::Pose2& pose);
+  // A stereo pair was captured now: notes which people were in it (any part of their disc
+  // within the camera's horizontal field of view, in a line of sight at the camera's height),
+  // for the collision log. SimCamera calls it.
+  void note_frame_captured();
 
  private:
   void integrate(double dt_s);
@@ -103,6 +112,7 @@ class Simulator {
   int step_runs_into(const Eigen::Vector2d& here, const Eigen::Vector2d& there) const;
   // Whether the robot is still within 2 cm of what it ran into (kStaticObstacle or a person).
   bool still_touching(int target) const;
+  CollisionEvent describe_collision(int hit) const;
   void count_person_contacts();
   void emit_odometry();
 
@@ -112,6 +122,7 @@ class Simulator {
   core::SimConfig sim_;
   std::uint64_t seed_;
   ObstacleBand obstacles_;
+  ObstacleBand sight_blockers_;  // the obstacles at the camera's height
   core::RingBuffer<OdometrySample> odometry_queue_;
   std::int64_t time_ns_ = 0;
   core::Pose2 pose_;
@@ -131,6 +142,8 @@ class Simulator {
   std::uint64_t person_contacts_ = 0;
   std::vector<std::uint8_t> person_in_contact_;  // one per person, sized at construction; set from the
                                                // overlap until the person is 2 cm clear
+  std::vector<double> person_last_in_view_s_;  // one per person, -1 until first in view
+  std::vector<double> person_in_view_distance_m_;
   double distance_m_ = 0.0;
 };
 
