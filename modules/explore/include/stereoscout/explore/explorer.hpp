@@ -20,7 +20,7 @@
 // checked against the cells the current grid holds as occupied, and the robot stops if the
 // disc would touch one it does not already touch (optionally keeping fresh_obstacle_margin_m
 // more from cells that just turned occupied where the floor was free: trace_memory.hpp).
-// Optionally (scan_guard_min_points, off by default) it also stands still, without a look,
+// With scan_guard_min_points (on by default) it also stands still, without a look,
 // while within scan_guard_distance_m along the plan or its heading it would touch that many
 // of the obstacles the latest scan saw at the camera's height (a person walking in, whom the
 // grid holds only some updates later).
