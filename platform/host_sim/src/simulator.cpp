@@ -67,8 +67,10 @@ int Simulator::step_runs_into(const Eigen::Vector2d& here, const Eigen::Vector2d
 
 Simulator::CollisionEvent Simulator::describe_collision(int hit) const {
   CollisionEvent event{time_s(), pose_, hit};
-  Eigen::Vector2d target = obstacles_.nearest_point(pose_.translation());
-  if (hit != kStaticObstacle) {
+  Eigen::Vector2d target;
+  if (hit == kStaticObstacle) {
+    target = obstacles_.nearest_point(pose_.translation());
+  } else {
     const auto i = static_cast<std::size_t>(hit);
     target = world_.person_position(i, time_s());
     event.last_in_view_s = person_last_in_view_s_[i];
