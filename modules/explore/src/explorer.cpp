@@ -68,7 +68,7 @@ Explorer::Explorer(const ExploreParams& params)
       map_(params),
       goal_value_(params),
       memory_(static_cast<std::size_t>(params.explore.goal_memory), params.explore.visited_goal_radius_m,
-              params.explore.goal_failures_before_blacklist),
+              params.explore.blacklist_radius_m, params.explore.goal_failures_before_blacklist),
       stall_(params.explore),
       contacts_(params.explore, params.max_width, params.max_height),
       traces_(params.explore, params.max_width, params.max_height),

@@ -7,8 +7,12 @@
 
 namespace stereoscout::explore {
 
-GoalMemory::GoalMemory(std::size_t capacity, double radius_m, int failures_before_blacklist)
-    : entries_(capacity), radius2_(radius_m * radius_m), failures_before_blacklist_(failures_before_blacklist) {}
+GoalMemory::GoalMemory(std::size_t capacity, double radius_m, double blacklist_radius_m,
+                       int failures_before_blacklist)
+    : entries_(capacity),
+      radius2_(radius_m * radius_m),
+      blacklist_radius2_(blacklist_radius_m * blacklist_radius_m),
+      failures_before_blacklist_(failures_before_blacklist) {}
 
 GoalMemory::Entry* GoalMemory::find(const Eigen::Vector2d& position) {
   for (Entry& entry : entries_) {
@@ -40,13 +44,14 @@ void GoalMemory::record_visit(const Eigen::Vector2d& position) {
     return;
   }
   entry->failures = std::max(entry->failures, failures_before_blacklist_);
+  entry->visited = true;
 }
 
 bool GoalMemory::excluded(const Eigen::Vector2d& position) const {
   for (const Entry& entry : entries_) {
-    if (entry.failures >= failures_before_blacklist_ && (entry.position - position).squaredNorm() <= radius2_) {
-      return true;
-    }
+    if (entry.failures < failures_before_blacklist_) continue;
+    const double radius2 = entry.visited ? radius2_ : std::max(radius2_, blacklist_radius2_);
+    if ((entry.position - position).squaredNorm() <= radius2) return true;
   }
   return false;
 }

@@ -67,7 +67,7 @@ void run_goal_selection(benchmark::State& state, int stride) {
   }
   NavigationMap map(params);
   map.rebuild(scene.view, scene.robot, scene.robot);
-  GoalMemory memory(512, 0.5, 3);
+  GoalMemory memory(512, 0.5, 2.0, 3);
   const GoalValue goal_value(params);
   for (auto _ : state) {
     map.compute_reachable(scene.view.cell_of(scene.robot));

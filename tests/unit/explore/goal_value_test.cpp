@@ -72,7 +72,7 @@ TEST(GoalValue, HSumsSeventyTwoRays) {
 }
 
 TEST(GoalMemory, BlacklistsAfterTheConfiguredFailures) {
-  GoalMemory memory(4, 0.5, 3);
+  GoalMemory memory(4, 0.5, 0.5, 3);
   const Eigen::Vector2d goal(2.0, 1.0);
   EXPECT_FALSE(memory.record_failure(goal));
   EXPECT_FALSE(memory.record_failure(goal + Eigen::Vector2d(0.2, 0.0)));  // same goal, within radius
@@ -87,6 +87,28 @@ TEST(GoalMemory, BlacklistsAfterTheConfiguredFailures) {
   memory.record_visit(Eigen::Vector2d(9.0, 5.0));
   memory.record_visit(Eigen::Vector2d(11.0, 5.0));  // full: counted, forgotten
   EXPECT_EQ(memory.forgotten(), 1U);
+}
+
+// A room seen through a door the robot cannot pass: once a goal in it is blacklisted, the
+// goals beside it are skipped too, out to blacklist_radius_m; a visited goal keeps the small
+// radius, so the space around a goal the robot did reach stays open.
+TEST(GoalMemory, ABlacklistedGoalSkipsItsNeighbourhoodAVisitedOneOnlyItsSpot) {
+  GoalMemory memory(8, 0.5, 2.0, 3);
+  const Eigen::Vector2d goal(11.35, 8.45);
+  memory.record_failure(goal);
+  memory.record_failure(goal + Eigen::Vector2d(0.0, 0.1));
+  EXPECT_FALSE(memory.excluded(goal + Eigen::Vector2d(-0.4, -0.2)));  // two failures: not yet
+  EXPECT_TRUE(memory.record_failure(goal));
+  EXPECT_TRUE(memory.excluded(goal + Eigen::Vector2d(-0.4, -0.2)));
+  EXPECT_TRUE(memory.excluded(goal + Eigen::Vector2d(-1.9, 0.0)));
+  EXPECT_FALSE(memory.excluded(goal + Eigen::Vector2d(-2.1, 0.0)));
+  const Eigen::Vector2d visited(3.0, 3.0);
+  memory.record_visit(visited);
+  EXPECT_TRUE(memory.excluded(visited + Eigen::Vector2d(0.4, 0.0)));
+  EXPECT_FALSE(memory.excluded(visited + Eigen::Vector2d(0.6, 0.0)));
+  // A failed goal that had been visited keeps the visited radius.
+  memory.record_failure(visited);
+  EXPECT_FALSE(memory.excluded(visited + Eigen::Vector2d(0.6, 0.0)));
 }
 
 // A known free room (walls around) with an unknown region beyond its right wall seen through
@@ -113,7 +135,8 @@ TEST(GoalValue, SelectsAReachableSafeCellFacingTheUnknown) {
   const Eigen::Vector2d robot(1.5, 3.0);
   ASSERT_TRUE(map.rebuild(scene.grid.view(), robot, robot));
   map.compute_reachable(scene.grid.view().cell_of(robot));
-  GoalMemory memory(16, params.explore.visited_goal_radius_m, params.explore.goal_failures_before_blacklist);
+  GoalMemory memory(16, params.explore.visited_goal_radius_m, params.explore.blacklist_radius_m,
+                    params.explore.goal_failures_before_blacklist);
   const GoalValue goal_value(params);
   const Goal goal = goal_value.select(map, memory);
   ASSERT_TRUE(goal.valid);
@@ -134,7 +157,7 @@ TEST(GoalValue, SelectsAReachableSafeCellFacingTheUnknown) {
   for (int k = 0; k < params.explore.goal_failures_before_blacklist; ++k) memory.record_failure(goal.position);
   const Goal next = goal_value.select(map, memory);
   ASSERT_TRUE(next.valid);
-  EXPECT_GT((next.position - goal.position).norm(), params.explore.visited_goal_radius_m);
+  EXPECT_GT((next.position - goal.position).norm(), params.explore.blacklist_radius_m);
 }
 
 // A goal's cell made impassable moves to the nearest passable cell in sight of it, never to

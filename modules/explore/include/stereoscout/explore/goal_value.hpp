@@ -27,10 +27,14 @@ struct Goal {
   double value = 0.0;
 };
 
-// Goals that failed, or were reached already: a fixed list.
+// Goals that failed, or were reached already: a fixed list. Failures of goals within radius_m
+// of each other count as one goal's. A visited goal excludes candidates within radius_m; a
+// blacklisted one within blacklist_radius_m, which may be larger: a room seen through a door
+// the robot cannot pass (too narrow, or hung with something at its height) offers one goal
+// after another beside the last, and each failure costs a drive there.
 class GoalMemory {
  public:
-  GoalMemory(std::size_t capacity, double radius_m, int failures_before_blacklist);
+  GoalMemory(std::size_t capacity, double radius_m, double blacklist_radius_m, int failures_before_blacklist);
   // Counts a failure of the goal at `position`; returns true when it is now blacklisted.
   bool record_failure(const Eigen::Vector2d& position);
   // A reached goal is never chosen again (it was looked around from).
@@ -44,10 +48,12 @@ class GoalMemory {
   struct Entry {
     Eigen::Vector2d position;
     int failures = 0;
+    bool visited = false;
   };
   Entry* find(const Eigen::Vector2d& position);
   core::FixedVector<Entry> entries_;
   double radius2_;
+  double blacklist_radius2_;
   int failures_before_blacklist_;
   std::uint64_t blacklisted_ = 0;
   std::uint64_t forgotten_ = 0;

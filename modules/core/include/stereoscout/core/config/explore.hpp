@@ -18,6 +18,7 @@ struct ExploreConfig {
   double goal_shift_radius_m = 0.0;
   int goal_failures_before_blacklist = 3;
   double visited_goal_radius_m = 0.5;
+  double blacklist_radius_m = 2.0;
   int goal_memory = 512;
   double unknown_travel_radius_m = 1.0;
   bool unknown_travel_near_robot = true;
@@ -71,7 +72,8 @@ inline void describe(ConfigVisitor& v, ExploreConfig& c) {
   v.number("goal_tolerance_m", c.goal_tolerance_m, {0.01, 5.0, "m", "A goal is reached within this distance."});
   v.number("goal_shift_radius_m", c.goal_shift_radius_m, {0.0, 5.0, "m", "When a later update makes the goal's cell impassable (a new obstacle cell nearby: a person's trace, a stereo outlier), plans go to the nearest passable cell within this distance of it in sight of it instead of failing the goal; its view is nearly the same. 0 = off, the default: with true poses it halves goal failures, but with the filter it lowered coverage in all six office and clutter runs measured at 0.5 m (docs/results.md); not in the paper."});
   v.integer_field("goal_failures_before_blacklist", c.goal_failures_before_blacklist, {1, 100, "", "A goal that failed this many times is never chosen again; the return to the start is given up at its this-many-th failure (no plan, or no progress for stuck_timeout_s), with a look and a new try after each before that."});
-  v.number("visited_goal_radius_m", c.visited_goal_radius_m, {0.0, 10.0, "m", "Candidates this close to a blacklisted or already visited goal are skipped."});
+  v.number("visited_goal_radius_m", c.visited_goal_radius_m, {0.0, 10.0, "m", "Candidates this close to an already visited goal are skipped, and failures of goals this close to each other count as one goal's."});
+  v.number("blacklist_radius_m", c.blacklist_radius_m, {0.0, 10.0, "m", "Candidates this close to a blacklisted goal are skipped (at least visited_goal_radius_m). A room seen through a door the robot cannot pass offers goal after goal beside the last one blacklisted, each failing after a drive there; the default, preferred_distance_m, skips the goals that would look at the same unknown space."});
   v.integer_field("goal_memory", c.goal_memory, {1, 100000, "goals", "Failed and visited goals remembered (fixed list; when full, new ones are counted and forgotten)."});
   v.number("unknown_travel_radius_m", c.unknown_travel_radius_m, {0.0, 5.0, "m", "Paths may cross unknown cells this close to the start pose (the camera cannot see the floor right in front of it, so the robot starts in an unknown disc) and, with unknown_travel_near_robot, to the robot; never a cell that was in view."});
   v.boolean("unknown_travel_near_robot", c.unknown_travel_near_robot, "Paths may also cross unknown cells within unknown_travel_radius_m of the robot wherever it is (after a look from a goal, the ring within a metre is unseen), except cells that were in view (grid.in_view_range_m): those are surfaces the stereo could not measure, such as a blank wall.");
