@@ -6,12 +6,18 @@
 #include "stereoscout/core/geometry.hpp"
 
 namespace stereoscout::explore {
+namespace {
+
+double squared(double value) { return value * value; }
+
+}  // namespace
 
 GoalMemory::GoalMemory(std::size_t capacity, double radius_m, double blacklist_radius_m,
                        int failures_before_blacklist)
     : entries_(capacity),
-      radius2_(radius_m * radius_m),
-      blacklist_radius2_(blacklist_radius_m * blacklist_radius_m),
+      radius2_(squared(radius_m)),
+      // Never below the visited radius: failures add up within it.
+      blacklist_radius2_(squared(std::max(radius_m, blacklist_radius_m))),
       failures_before_blacklist_(failures_before_blacklist) {}
 
 GoalMemory::Entry* GoalMemory::find(const Eigen::Vector2d& position) {
@@ -50,7 +56,7 @@ void GoalMemory::record_visit(const Eigen::Vector2d& position) {
 bool GoalMemory::excluded(const Eigen::Vector2d& position) const {
   for (const Entry& entry : entries_) {
     if (entry.failures < failures_before_blacklist_) continue;
-    const double radius2 = entry.visited ? radius2_ : std::max(radius2_, blacklist_radius2_);
+    const double radius2 = entry.visited ? radius2_ : blacklist_radius2_;
     if ((entry.position - position).squaredNorm() <= radius2) return true;
   }
   return false;

@@ -12,10 +12,11 @@
 // collision_count() goes up by one; a new command lets it move again. collision_event_count()
 // counts contacts: a refused step when the robot was clear (2 cm) of what it last ran into
 // (wall or person) since that contact; pushing on, or sliding along a wall, refused step after
-// step, is one contact. People walk their loops regardless of the robot: a person who walks into the robot (stopped, turning, or
-// overtaken from behind) is the person's collision, not the robot's; each such contact
-// (start of an overlap) is counted in person_contact_count(), and lasts until they walk on
-// (2 cm clear): the robot's steps meanwhile, after a person who walked through it, are no collision.
+// step, is one contact. People walk their loops regardless of the robot: a person who walks
+// into the robot (stopped, turning, or overtaken from behind) is the person's collision, not
+// the robot's; each such contact (start of an overlap) is counted in person_contact_count(),
+// and lasts until they walk on (2 cm clear): the robot's steps meanwhile, after a person who
+// walked through it, are no collision.
 //
 // Odometry: at robot.odometry_rate_hz the true motion since the last reading is corrupted by
 // the noise model of the floor under the robot (config sim.tile / sim.carpet) and integrated
