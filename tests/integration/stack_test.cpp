@@ -28,14 +28,15 @@ namespace fs = std::filesystem;
 constexpr const char* kWorld = test::kTwoRoomsWorld;
 
 // A small camera and map so that a run of a few simulated seconds takes seconds.
-std::string config_text(const std::string& world_path) {
+std::string config_text(const std::string& world_path, int scan_history = 512) {
   return "%YAML:1.0\n"
          "run: {seed: 7, max_time_s: 12, world: \"" + world_path + "\"}\n"
          "camera: {width_px: 320, height_px: 240, focal_px: 200, principal_x_px: 159.5, principal_y_px: 119.5}\n"
          "vision: {max_features: 300, dense_num_disparities: 32, max_disparity_px: 64}\n"
          "filter: {particles: 20, particle_capacity: 20, landmark_node_capacity: 200000, "
          "landmark_estimate_capacity: 100000, trajectory_node_capacity: 20000}\n"
-         "grid: {width_cells: 160, height_cells: 160, final_map_resolution_m: 0.05, scan_history: 512}\n";
+         "grid: {width_cells: 160, height_cells: 160, final_map_resolution_m: 0.05, scan_history: " +
+         std::to_string(scan_history) + "}\n";
 }
 
 class StackRun : public ::testing::Test {
@@ -135,6 +136,27 @@ TEST_F(StackRun, SameSeedSameOutputsNoHeapInLoopAndEveryReportKey) {
                           "\"exhausted\""}) {
     EXPECT_NE(a.find(key), std::string::npos) << key << "\n" << a;
   }
+}
+
+// A ring of 4 scans: all but the last 4 of the run's scans reach map.pgm through the archive,
+// and a replay still writes the same files.
+TEST_F(StackRun, ARunLongerThanTheScanRingKeepsItsWholeFinalMap) {
+  std::ofstream(dir_ / "short-ring.yaml") << config_text((dir_ / "world.yaml").string(), 4);
+  const test::CommandResult live =
+      test::run_stereoscout("explore --config " + (dir_ / "short-ring.yaml").string() + " --out " + (dir_ / "live").string());
+  ASSERT_EQ(live.exit_code, 0) << live.output;
+  const std::string a = report("live");
+  const double updates = report_number(a, "updates");
+  EXPECT_GT(updates, 10.0) << a;
+  EXPECT_EQ(report_number(a, "scans_archived"), updates - 4.0) << a;
+  EXPECT_EQ(report_number(a, "scans_from_ring"), 4.0) << a;
+  EXPECT_EQ(report_number(a, "scans_missing"), 0.0) << a;
+  EXPECT_NE(a.find("\"archive_on_final_lineage\": true"), std::string::npos) << a;
+  const test::CommandResult replayed = replay(dir_ / "live" / "sensors.log", "replay");
+  ASSERT_EQ(replayed.exit_code, 0) << replayed.output;
+  std::map<std::string, std::string> expected = output_digests(a);
+  expected.erase("sensors.log");
+  EXPECT_EQ(output_digests(report("replay")), expected);
 }
 
 TEST_F(StackRun, ReplayGivesTheLiveOutputsAndSurvivesDamage) {

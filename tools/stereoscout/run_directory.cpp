@@ -117,10 +117,10 @@ std::string write_trajectories(const stack::Stack& stack, const std::string& out
 }
 
 std::string write_maps(const stack::Stack& stack, const core::SystemConfig& config, const std::string& out,
-                       occupancy::RosMap& map) {
+                       occupancy::RosMap& map, occupancy::TrajectoryScanCounts& counts) {
   const std::unique_ptr<occupancy::OccupancyGrid> grid = occupancy::build_final_map(
-      stack.filter().trajectory(), stack.filter().ml_trajectory_node(), stack.grid().scans(),
-      config.grid.final_map_resolution_m, config.grid.final_map_margin_m, occupancy::LogOddsModel::from_config(config.grid));
+      stack.filter().trajectory(), stack.filter().ml_trajectory_node(), stack.grid().scans(), &stack.scan_archive(),
+      config.grid.final_map_resolution_m, config.grid.final_map_margin_m, occupancy::LogOddsModel::from_config(config.grid), &counts);
   map = occupancy::classify_grid(*grid, occupancy::CellThresholds::from_config(config.grid));
   std::string error = occupancy::write_ros_map(map, out + "/map.pgm", out + "/map.yaml");
   if (!error.empty()) return error;
@@ -190,7 +190,25 @@ void write_pools(report::JsonWriter& json, const stack::Stack& stack, const core
   pool(json, "scan_history", static_cast<std::size_t>(ring), static_cast<std::size_t>(std::min(scans, ring)),
        scans > ring ? scans - ring : 0);
   pool(json, "descriptor_index", index.capacity, index.entries, index.refused);
+  const occupancy::ScanArchiveStats& archive = stack.scan_archive().stats();
+  pool(json, "final_map_tiles", stack.scan_archive().tile_capacity(), archive.tiles_used, archive.tile_refusals);
   json.end_object();
+}
+
+// Where map.pgm's scans came from (docs/report.md, "final_map").
+void write_final_map(report::JsonWriter& json, const occupancy::TrajectoryScanCounts& counts,
+                     const occupancy::ScanArchiveStats& archive) {
+  json.begin_object("final_map")
+      .unsigned_integer("trajectory_nodes", counts.nodes)
+      .unsigned_integer("scans_from_ring", counts.scans_inserted)
+      .unsigned_integer("nodes_before_ring", counts.nodes_archived)
+      .unsigned_integer("scans_archived", archive.scans_archived)
+      .unsigned_integer("scans_missing", counts.scans_overwritten)
+      .boolean("archive_on_final_lineage", counts.archive_on_lineage)
+      .unsigned_integer("archive_lineage_switches", archive.lineage_switches)
+      .unsigned_integer("archive_scans_off_lineage", archive.scans_off_lineage)
+      .unsigned_integer("archive_scans_outside", archive.scans_outside)
+      .end_object();
 }
 
 void write_counters(report::JsonWriter& json, const stack::Stack& stack) {
@@ -325,6 +343,7 @@ std::string report_json(const stack::Stack& stack, const core::SystemConfig& con
   write_coverage_curve(json, context.coverage_curve);
   write_timing(json, stack.scheduler());
   write_pools(json, stack, config);
+  write_final_map(json, score.final_map, stack.scan_archive().stats());
   json.unsigned_integer("heap_allocations_in_loop", stack.counters().heap_allocations_in_loop);
   write_counters(json, stack);
   json.begin_object("outputs_sha256");
@@ -358,7 +377,7 @@ std::string write_run_directory(const stack::Stack& stack, const core::SystemCon
   if (!write_text(out + "/landmarks.ply", ply.str(), error)) return error;
   if (!write_text(out + "/explore_events.csv", explore_events_csv(stack.explorer().journal()), error)) return error;
   occupancy::RosMap map;
-  error = write_maps(stack, config, out, map);
+  error = write_maps(stack, config, out, map, score.final_map);
   if (!error.empty()) return error;
   score_trajectories(stack, score);
   score_map(stack, config, context, score);

@@ -13,6 +13,7 @@
 
 #include "stereoscout/core/system_config.hpp"
 #include "stereoscout/host_sim/world.hpp"
+#include "stereoscout/occupancy/final_map.hpp"
 #include "stereoscout/stack/stack.hpp"
 
 namespace stereoscout::cli {
@@ -43,6 +44,7 @@ struct RunScore {
   double ate_rmse_m = -1.0;
   double odometry_ate_rmse_m = -1.0;
   std::size_t landmarks = 0;
+  occupancy::TrajectoryScanCounts final_map;  // where map.pgm's scans came from
 };
 
 // Writes everything into `out` (which must exist). Returns an empty string on success, else

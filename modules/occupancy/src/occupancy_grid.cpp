@@ -17,6 +17,8 @@ constexpr double kAlwaysFirm = std::numeric_limits<double>::infinity();
 // measurement (or a units bug), not geometry: skipping it bounds the line walk.
 constexpr double kFarLimitInGridSpans = 4.0;
 constexpr float kMaxDistanceMm = 65535.0F;
+// Origins closer than this fraction of a cell to the same lattice count as on it.
+constexpr double kLatticeTolerance = 1e-6;
 
 }  // namespace
 
@@ -92,6 +94,33 @@ void OccupancyGrid::clear() {
   counts_ = {};
 }
 
+void OccupancyGrid::clear_at(double origin_x_m, double origin_y_m) {
+  geometry_.origin_x_m = origin_x_m;
+  geometry_.origin_y_m = origin_y_m;
+  clear();
+}
+
+void OccupancyGrid::paste(const OccupancyGrid& part) {
+  const GridGeometry& from = part.geometry_;
+  STEREOSCOUT_CHECK(from.resolution_m == geometry_.resolution_m, "OccupancyGrid::paste needs the same resolution");
+  const double shift_x = (from.origin_x_m - geometry_.origin_x_m) / geometry_.resolution_m;
+  const double shift_y = (from.origin_y_m - geometry_.origin_y_m) / geometry_.resolution_m;
+  const auto cells_x = static_cast<int>(std::lround(shift_x));
+  const auto cells_y = static_cast<int>(std::lround(shift_y));
+  STEREOSCOUT_CHECK(std::abs(shift_x - cells_x) < kLatticeTolerance && std::abs(shift_y - cells_y) < kLatticeTolerance,
+                    "OccupancyGrid::paste needs origins a whole number of cells apart");
+  const int first_x = std::max(0, -cells_x);
+  const int last_x = std::min(from.width_cells, geometry_.width_cells - cells_x);
+  if (first_x >= last_x) return;
+  const auto row_length = static_cast<std::size_t>(last_x - first_x);
+  for (int y = std::max(0, -cells_y); y < std::min(from.height_cells, geometry_.height_cells - cells_y); ++y) {
+    const std::size_t source = part.index(first_x, y);
+    const std::size_t target = index(first_x + cells_x, y + cells_y);
+    std::memcpy(cells_.get() + target, part.cells_.get() + source, row_length * sizeof(float));
+    std::memcpy(cell_flags_.get() + target, part.cell_flags_.get() + source, row_length);
+  }
+}
+
 void OccupancyGrid::copy_from(const OccupancyGrid& other) {
   STEREOSCOUT_CHECK(geometry_.same_as(other.geometry_), "OccupancyGrid::copy_from needs the same geometry");
   std::memcpy(cells_.get(), other.cells_.get(), geometry_.cell_count() * sizeof(float));
@@ -142,6 +171,14 @@ bool OccupancyGrid::grid_coordinates(double start_x, double start_y, double end_
     return false;
   }
   return true;
+}
+
+bool OccupancyGrid::misses_grid(const GridSegment& segment) const {
+  const double low_x = std::floor(std::min(segment.x0, segment.x1));
+  const double high_x = std::floor(std::max(segment.x0, segment.x1));
+  const double low_y = std::floor(std::min(segment.y0, segment.y1));
+  const double high_y = std::floor(std::max(segment.y0, segment.y1));
+  return high_x < 0.0 || high_y < 0.0 || low_x >= geometry_.width_cells || low_y >= geometry_.height_cells;
 }
 
 namespace {
@@ -205,6 +242,7 @@ void OccupancyGrid::cast_ray(double start_x, double start_y, double end_x, doubl
     return;
   }
   ++counts_.rays;
+  if (misses_grid(segment)) return;  // a tile of the scan archive, away from this ray
   const double length = std::hypot(segment.x1 - segment.x0, segment.y1 - segment.y0);
   const double firm = firm_m / geometry_.resolution_m;
   const bool guarded = std::isfinite(firm);
@@ -237,6 +275,7 @@ void OccupancyGrid::clear_camera_height_hits(double start_x, double start_y, dou
     ++counts_.rays_rejected;
     return;
   }
+  if (misses_grid(segment)) return;
   walk_cells(segment, [this](int x, int y) {
     if (geometry_.contains(x, y) && (cell_flags_[index(x, y)] & kLastHitAtCameraHeight) != 0U) miss(x, y);
   });
@@ -301,7 +340,7 @@ void OccupancyGrid::insert_column(const Eigen::Vector2d& origin, const Eigen::Ve
 void OccupancyGrid::mark_in_view(const Eigen::Vector2d& from, const Eigen::Vector2d& to) {
   GridSegment segment;
   // Not counted: a rejected end is the column's, counted by its ray.
-  if (!grid_coordinates(from.x(), from.y(), to.x(), to.y(), segment)) return;
+  if (!grid_coordinates(from.x(), from.y(), to.x(), to.y(), segment) || misses_grid(segment)) return;
   const auto mark = [this](int x, int y) {
     if (geometry_.contains(x, y)) cell_flags_[index(x, y)] |= kInView;
   };

@@ -119,7 +119,9 @@ Stack::Stack(const core::SystemConfig& config, const StackOptions& options, cons
 
 Stack::~Stack() {
   finish();
-  grid_.reset();  // releases its trajectory nodes while the filter's tree exists (also the member order)
+  // Both release their trajectory nodes while the filter's tree exists (also the member order).
+  archive_.reset();
+  grid_.reset();
 }
 
 bool Stack::start(double start_timeout_s, std::string& error) {
@@ -147,6 +149,10 @@ bool Stack::start(double start_timeout_s, std::string& error) {
   grid_ = std::make_unique<occupancy::JustInTimeGrid>(config_.grid, geometry,
                                                       static_cast<std::size_t>(config_.camera.width_px),
                                                       filter_->trajectory());
+  archive_ = std::make_unique<occupancy::ScanArchive>(
+      geometry, config_.grid.final_map_resolution_m, config_.grid.final_map_tile_m,
+      static_cast<std::size_t>(config_.grid.final_map_archive_tiles), occupancy::LogOddsModel::from_config(config_.grid),
+      filter_->trajectory());
   view_ = navigation_view(geometry, cells_.data(), in_view_.data());
   pose_at_update_ = filter_->ml_pose();
   odometry_at_update_ = first.pose;
@@ -363,6 +369,7 @@ core::Status Stack::observation_update() {
     return result.status;
   }
   const std::uint32_t index = filter_->trajectory().get(filter_->ml_trajectory_node()).update_index;
+  archive_->keep_leaving_scan(grid_->scans(), index, filter_->ml_trajectory_node());
   grid_->record_scan(index, scan_);
   pose_at_update_ = filter_->ml_pose();
   odometry_at_update_ = odometry_at_frame;

@@ -45,6 +45,7 @@
 // Because of the clamps the result depends on the order of insertion, so "the grid of a
 // trajectory" always means its scans inserted in update order.
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -138,6 +139,23 @@ struct ScanView {
   std::size_t count = 0;
 };
 
+// A column end this far from the robot is a broken measurement: it must size no map.
+inline constexpr double kMaxPlausibleScanRangeM = 100.0;
+
+// Calls visit(x_m, y_m) with the map-frame end of every column of `scan` seen from `pose`,
+// except broken measurements. For sizing maps and archives.
+template <typename Visit>
+void for_each_plausible_end(const ScanView& scan, const core::Pose2& pose, Visit&& visit) {
+  const double c = std::cos(pose.theta);
+  const double s = std::sin(pose.theta);
+  for (std::size_t i = 0; i < scan.count; ++i) {
+    const double px = scan.points[i].x_robot_m;
+    const double py = scan.points[i].y_robot_m;
+    if (!(std::hypot(px, py) < kMaxPlausibleScanRangeM)) continue;
+    visit(pose.x + c * px - s * py, pose.y + s * px + c * py);
+  }
+}
+
 struct InsertCounts {
   std::uint64_t rays = 0;
   std::uint64_t rays_rejected = 0;  // non-finite or absurdly far end points, skipped
@@ -152,8 +170,14 @@ class OccupancyGrid {
   OccupancyGrid& operator=(const OccupancyGrid&) = delete;
 
   void clear();
+  // Clears the grid and moves its lower-left corner (same size, no allocation): a tile of the
+  // scan archive taking its place.
+  void clear_at(double origin_x_m, double origin_y_m);
   // Same geometry required (checked); no allocation.
   void copy_from(const OccupancyGrid& other);
+  // Copies the cells (log-odds and marks) of `part` that this grid also covers. Same
+  // resolution, and origins a whole number of cells apart (checked).
+  void paste(const OccupancyGrid& part);
 
   // Inserts a scan taken at `pose` (map frame). Both overloads give identical cells for the
   // same valid columns in the same order.
@@ -188,6 +212,8 @@ class OccupancyGrid {
   bool marked_hit_this_scan(int cell_x, int cell_y) const;
   void set_hit_marks(const Eigen::Vector2d& end, bool marked);
   bool grid_coordinates(double start_x, double start_y, double end_x, double end_y, GridSegment& segment) const;
+  // No cell of the segment (end cell included) lies in the grid: its walk can be skipped.
+  bool misses_grid(const GridSegment& segment) const;
   template <typename EachPoint>
   void insert_points(const ScanFrame& frame, EachPoint&& each_point);
   // Cells whose centre lies farther than firm_m along the ray from its start get

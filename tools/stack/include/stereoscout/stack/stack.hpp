@@ -34,6 +34,7 @@
 #include "stereoscout/log/records.hpp"
 #include "stereoscout/log/writer.hpp"
 #include "stereoscout/occupancy/just_in_time_grid.hpp"
+#include "stereoscout/occupancy/scan_archive.hpp"
 #include "stereoscout/platform/camera.hpp"
 #include "stereoscout/platform/clock.hpp"
 #include "stereoscout/platform/drive.hpp"
@@ -142,6 +143,7 @@ class Stack {
   // The parts, for the run's outputs and report (not for the tick loop).
   const slam::ParticleFilter& filter() const { return *filter_; }
   const occupancy::JustInTimeGrid& grid() const { return *grid_; }
+  const occupancy::ScanArchive& scan_archive() const { return *archive_; }
   const explore::Explorer& explorer() const { return *explorer_; }
   const explore::GridView& grid_view() const { return view_; }
   const vision::VisionFrontEnd& vision() const { return *vision_; }
@@ -197,6 +199,7 @@ class Stack {
   std::unique_ptr<vision::VisionFrontEnd> vision_;
   std::unique_ptr<slam::ParticleFilter> filter_;
   std::unique_ptr<occupancy::JustInTimeGrid> grid_;
+  std::unique_ptr<occupancy::ScanArchive> archive_;  // the final map's scans that left grid_'s ring
   std::unique_ptr<explore::Explorer> explorer_;
   std::unique_ptr<scheduler::Scheduler> scheduler_;
   core::FixedVector<core::LandmarkObservation> observations_;
