@@ -1,11 +1,11 @@
 #include "stereoscout/occupancy/final_map.hpp"
 
-#include "stereoscout/core/check.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
+
+#include "stereoscout/core/check.hpp"
 
 namespace stereoscout::occupancy {
 namespace {

@@ -160,7 +160,9 @@ void OccupancyGrid::hit(int cell_x, int cell_y, bool at_camera_height) {
 // or absurdly far (the caller counts it if it is a ray of its own).
 bool OccupancyGrid::grid_coordinates(double start_x, double start_y, double end_x, double end_y,
                                      GridSegment& segment) const {
-  const double span = kFarLimitInGridSpans * (geometry_.width_cells + geometry_.height_cells);
+  // A small grid (a tile of the scan archive) still takes every plausible ray near it.
+  const double size = geometry_.width_cells + geometry_.height_cells;
+  const double span = std::max(kFarLimitInGridSpans * size, 2.0 * kMaxPlausibleScanRangeM / geometry_.resolution_m + size);
   segment = {(start_x - geometry_.origin_x_m) / geometry_.resolution_m,
              (start_y - geometry_.origin_y_m) / geometry_.resolution_m,
              (end_x - geometry_.origin_x_m) / geometry_.resolution_m,

@@ -19,6 +19,16 @@ using testing::DriverSettings;
 constexpr double kFinalResolutionM = 0.02;
 constexpr double kTileM = 1.0;
 
+GridGeometry geometry_of(int width_cells, int height_cells, double resolution_m, double origin_x_m, double origin_y_m) {
+  GridGeometry geometry;
+  geometry.width_cells = width_cells;
+  geometry.height_cells = height_cells;
+  geometry.resolution_m = resolution_m;
+  geometry.origin_x_m = origin_x_m;
+  geometry.origin_y_m = origin_y_m;
+  return geometry;
+}
+
 core::GridConfig ring_config(int scan_history) {
   core::GridConfig config;
   config.width_cells = 120;  // the driver's circle and its 3 m scans stay inside
@@ -210,12 +220,7 @@ TEST(ScanArchive, ZeroTilesArchivesNothing) {
 TEST(ScanArchive, CountsAnMlLineageThatLeavesTheArchivedBranch) {
   slam::TrajectoryTree tree(64);
   ScanHistory scans(1, 8);
-  GridGeometry extent;
-  extent.width_cells = 100;
-  extent.height_cells = 100;
-  extent.resolution_m = 0.1;
-  extent.origin_x_m = -5.0;
-  extent.origin_y_m = -5.0;
+  const GridGeometry extent = geometry_of(100, 100, 0.1, -5.0, -5.0);
   ScanArchive archive(extent, 0.05, 2.0, 16, LogOddsModel{}, tree);
   const auto r = tree.add({}, core::Pose2{}, 0, 0);
   const auto a1 = tree.add(r, core::Pose2{0.1, 0.0, 0.0}, 1, 1);
@@ -246,10 +251,7 @@ TEST(ScanArchive, CountsAnMlLineageThatLeavesTheArchivedBranch) {
 }
 
 TEST(OccupancyGridPaste, CopiesTheCellsBothGridsCoverAndNothingElse) {
-  GridGeometry tile;
-  tile.width_cells = 10;
-  tile.height_cells = 10;
-  tile.resolution_m = 0.1;
+  const GridGeometry tile = geometry_of(10, 10, 0.1, 0.0, 0.0);
   OccupancyGrid part(tile, LogOddsModel{});
   part.clear_at(0.5, -0.3);
   core::DepthScan scan;
@@ -258,12 +260,7 @@ TEST(OccupancyGridPaste, CopiesTheCellsBothGridsCoverAndNothingElse) {
   scan.columns[0].y_robot_m = 0.05F;
   scan.columns[0].kind = core::DepthScanColumn::Kind::obstacle;
   part.insert(scan, core::Pose2{0.6, 0.0, 0.0});  // from (0.6, 0) to a hit at (1.35, 0.05): part cell (8, 3)
-  GridGeometry whole;
-  whole.width_cells = 16;
-  whole.height_cells = 6;
-  whole.resolution_m = 0.1;
-  whole.origin_x_m = 0.0;
-  whole.origin_y_m = 0.0;
+  const GridGeometry whole = geometry_of(16, 6, 0.1, 0.0, 0.0);
   OccupancyGrid grid(whole, LogOddsModel{});
   grid.paste(part);
   // part's cell (i, j) is grid's (i + 5, j - 3): grid columns 5..14 and rows 0..5 overlap it.

@@ -1,8 +1,9 @@
 #pragma once
 // The grid of one particle's whole trajectory, built from scratch (paper V: the final map is
 // rebuilt at the end of a run, at grid.final_map_resolution_m, from the ML trajectory's
-// scans; those that left the ring come from the ScanArchive). Also the reference the just-in-time grid is tested against. Allocates: for the end
-// of a run and for tests, not for the tick loop.
+// scans; those that left the ring come from the ScanArchive). Also the reference the
+// just-in-time grid is tested against. Allocates: for the end of a run and for tests, not for
+// the tick loop.
 
 #include <cstdint>
 #include <memory>
