@@ -1,5 +1,6 @@
 // Costs of the just-in-time grid at the paper's size (700 x 700 cells at 0.10 m, 640-column
-// scans): one scan insertion, one grid copy, a roll-up of L scans, the dependents walk for
+// scans): one scan insertion (also at the final map's 1 cm, and into the scan archive's
+// tiles), one grid copy, a roll-up of L scans, the dependents walk for
 // 1000 particles, and a whole synthetic run with 1000 particles reporting grids held,
 // roll-up lengths, copies, moves and evictions.
 #include <benchmark/benchmark.h>
@@ -12,6 +13,7 @@
 
 #include "ancestry_driver.hpp"
 #include "stereoscout/occupancy/just_in_time_grid.hpp"
+#include "stereoscout/occupancy/scan_archive.hpp"
 #include "stereoscout/slam/particle_filter.hpp"
 
 namespace stereoscout::occupancy {
@@ -56,6 +58,56 @@ void BM_InsertScan(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_InsertScan)->Unit(benchmark::kMicrosecond);
+
+// The same scan into a grid at the final map's 1 cm (an office-sized 40 x 16 m): what the end
+// of a run pays per scan.
+void BM_InsertScanFinalResolution(benchmark::State& state) {
+  const core::GridConfig config = paper_config();
+  GridGeometry geometry;
+  geometry.width_cells = 4000;
+  geometry.height_cells = 1600;
+  geometry.resolution_m = config.final_map_resolution_m;
+  geometry.origin_x_m = -20.0;
+  geometry.origin_y_m = -8.0;
+  OccupancyGrid grid(geometry, LogOddsModel::from_config(config));
+  const core::DepthScan scan = paper_scan(1);
+  for (auto _ : state) {
+    grid.insert(scan, core::Pose2{0.3, -0.2, 0.4});
+    benchmark::ClobberMemory();
+  }
+}
+BENCHMARK(BM_InsertScanFinalResolution)->Unit(benchmark::kMicrosecond);
+
+// A scan leaving the ring into the archive's 4 m tiles at 1 cm (the default config): what the
+// observation update pays per update once the ring is full. The scan spans four tiles.
+void BM_ArchiveLeavingScan(benchmark::State& state) {
+  const core::GridConfig config = paper_config();
+  slam::TrajectoryTree tree(1000000);
+  ScanHistory ring(1, kColumns);
+  ScanArchive archive(GridGeometry::centred_on(config, {}), config.final_map_resolution_m, config.final_map_tile_m,
+                      static_cast<std::size_t>(config.final_map_archive_tiles), LogOddsModel::from_config(config), tree);
+  const core::DepthScan scan = paper_scan(1);
+  const core::Pose2 pose{0.3, -0.2, 0.4};
+  slam::TrajectoryNodeHandle node = tree.add({}, pose, 0, 0);
+  std::uint32_t update = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    ring.record(update, scan);
+    state.ResumeTiming();
+    archive.keep_leaving_scan(ring, update + 1, node);
+    benchmark::ClobberMemory();
+    state.PauseTiming();
+    ++update;
+    const slam::TrajectoryNodeHandle child = tree.add(node, pose, 0, update);
+    tree.release(node);
+    node = child;
+    state.ResumeTiming();
+  }
+  state.counters["tiles"] = static_cast<double>(archive.stats().tiles_used);
+  archive.release();
+  tree.release(node);
+}
+BENCHMARK(BM_ArchiveLeavingScan)->Unit(benchmark::kMicrosecond);
 
 void BM_GridCopy(benchmark::State& state) {
   const core::GridConfig config = paper_config();
