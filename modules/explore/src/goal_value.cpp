@@ -123,12 +123,16 @@ Goal GoalValue::select(const NavigationMap& map, const GoalMemory& memory) const
   const CellBox& box = map.window();
   const int stride = params_.explore.candidate_stride_cells;
   Goal best;
+  const double distance_cost = params_.explore.goal_distance_cost;
   auto consider = [&](int x, int y) {
     if (!is_candidate(map, memory, x, y)) return;
     const double h = value(map, x, y);
-    if (h > best.value) {
+    if (h <= 0.0) return;
+    const double utility = distance_cost > 0.0 ? h - distance_cost * map.reach_distance_m(x, y) : h;
+    if (!best.valid || utility > best.utility) {
       best.valid = true;
       best.value = h;
+      best.utility = utility;
       best.cell = Eigen::Vector2i(x, y);
     }
   };

@@ -22,6 +22,7 @@ NavigationMap::NavigationMap(const ExploreParams& params)
       traversability_(new std::uint8_t[capacity_]),
       penalty_(new float[capacity_]),
       reached_stamp_(new std::uint32_t[capacity_]()),
+      reach_steps_(new std::int32_t[capacity_]()),
       queue_(new std::int32_t[capacity_]),
       region_label_(new std::uint32_t[capacity_]()) {}
 
@@ -351,17 +352,20 @@ void NavigationMap::compute_reachable(const Eigen::Vector2i& start) {
   std::size_t tail = 0;
   const auto start_index = static_cast<std::int32_t>(index(start.x(), start.y()));
   reached_stamp_[static_cast<std::size_t>(start_index)] = reach_stamp_;
+  reach_steps_[static_cast<std::size_t>(start_index)] = 0;
   queue_[tail++] = start_index;
   while (head < tail) {
     const std::int32_t cell = queue_[head++];
     const int x = cell % grid_.width;
     const int y = cell / grid_.width;
+    const std::int32_t steps = reach_steps_[static_cast<std::size_t>(cell)] + 1;
     for (int dy = -1; dy <= 1; ++dy) {
       for (int dx = -1; dx <= 1; ++dx) {
         if ((dx == 0 && dy == 0) || !passable(x + dx, y + dy)) continue;
         const std::size_t next = index(x + dx, y + dy);
         if (reached_stamp_[next] == reach_stamp_) continue;
         reached_stamp_[next] = reach_stamp_;
+        reach_steps_[next] = steps;
         queue_[tail++] = static_cast<std::int32_t>(next);
       }
     }
@@ -370,6 +374,10 @@ void NavigationMap::compute_reachable(const Eigen::Vector2i& start) {
 
 bool NavigationMap::reachable(int x, int y) const {
   return window_.contains(x, y) && reached_stamp_[index(x, y)] == reach_stamp_;
+}
+
+double NavigationMap::reach_distance_m(int x, int y) const {
+  return reach_steps_[index(x, y)] * grid_.resolution_m;
 }
 
 }  // namespace stereoscout::explore

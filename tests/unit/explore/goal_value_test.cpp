@@ -160,6 +160,37 @@ TEST(GoalValue, SelectsAReachableSafeCellFacingTheUnknown) {
   EXPECT_GT((next.position - goal.position).norm(), params.explore.blacklist_radius_m);
 }
 
+// A long hall, 16 x 4 m, the robot at its west end: a small unknown patch in the wall near it,
+// the whole east end unknown. The paper's argmax H drives to the east end; a cost per metre
+// of path keeps the robot at the patch beside it. reach_distance_m is the fill's path length.
+TEST(GoalValue, ADistanceCostPrefersTheNearGoalToAFarBetterOne) {
+  TestGrid grid(160, 40, CellState::free);
+  grid.walls();
+  grid.fill(140, 1, 159, 39, CellState::unknown);  // the east end
+  grid.fill(38, 39, 44, 40, CellState::unknown);   // a patch in the north wall near the robot
+  ExploreParams params = test_params(160, 40);
+  NavigationMap map(params);
+  const Eigen::Vector2d robot(1.0, 2.0);
+  ASSERT_TRUE(map.rebuild(grid.view(), robot, robot));
+  const Eigen::Vector2i start = grid.view().cell_of(robot);
+  map.compute_reachable(start);
+  EXPECT_DOUBLE_EQ(map.reach_distance_m(start.x(), start.y()), 0.0);
+  EXPECT_NEAR(map.reach_distance_m(start.x() + 50, start.y()), 5.0, 1e-9);
+  EXPECT_NEAR(map.reach_distance_m(start.x() + 50, start.y() + 10), 5.0, 1e-9) << "8-connected: a diagonal step is one";
+  GoalMemory memory(16, params.explore.visited_goal_radius_m, params.explore.blacklist_radius_m,
+                    params.explore.goal_failures_before_blacklist);
+  const Goal paper = GoalValue(params).select(map, memory);
+  ASSERT_TRUE(paper.valid);
+  EXPECT_GT(paper.position.x(), 10.0) << "argmax H: the east end";
+  EXPECT_DOUBLE_EQ(paper.utility, paper.value);
+  params.explore.goal_distance_cost = 2.0;
+  const Goal near = GoalValue(params).select(map, memory);
+  ASSERT_TRUE(near.valid);
+  EXPECT_LT(near.position.x(), 7.0) << "with the cost: the patch beside the robot";
+  EXPECT_LT(near.value, paper.value);
+  EXPECT_NEAR(near.utility, near.value - 2.0 * map.reach_distance_m(near.cell.x(), near.cell.y()), 1e-9);
+}
+
 // A goal's cell made impassable moves to the nearest passable cell in sight of it, never to
 // the other side of a wall (the view from there is not the goal's).
 TEST(NavigationMap, NearestPassableCellStaysOnTheGoalsSideOfAWall) {

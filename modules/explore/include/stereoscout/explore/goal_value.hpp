@@ -7,7 +7,10 @@
 //
 // Goal selection is argmax H over cells that are free, safely traversable (not within the
 // robot radius plus the safety margin of an obstacle), reachable from the robot, and not near
-// a remembered (blacklisted or visited) goal. Speed: H is evaluated only on a lattice of
+// a remembered (blacklisted or visited) goal. With explore.goal_distance_cost > 0 (not in the
+// paper) it is argmax H - cost * d instead, d the reachable cell's path distance from the
+// robot (NavigationMap::reach_distance_m): a goal across the building has to be worth that
+// much more than one nearby. Goal::value stays H, which decides when nothing is left. Speed: H is evaluated only on a lattice of
 // candidate_stride_cells spacing and only where an unknown cell lies within the ray cap (the
 // distance transform of the navigation map says so, H is 0 elsewhere), then at full
 // resolution in the lattice cell around the best candidate.
@@ -24,7 +27,8 @@ struct Goal {
   bool valid = false;
   Eigen::Vector2i cell = Eigen::Vector2i::Zero();
   Eigen::Vector2d position = Eigen::Vector2d::Zero();
-  double value = 0.0;
+  double value = 0.0;    // H(s)
+  double utility = 0.0;  // what selection ranked: H(s) - goal_distance_cost * path distance
 };
 
 // Goals that failed, or were reached already: a fixed list. Failures of goals within radius_m

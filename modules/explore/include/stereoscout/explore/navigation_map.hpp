@@ -88,6 +88,9 @@ class NavigationMap {
   // it is not passable (the robot stands there).
   void compute_reachable(const Eigen::Vector2i& start);
   bool reachable(int x, int y) const;
+  // Of a reachable cell: the fill's steps from the start times the cell size, the length of a
+  // shortest 8-connected path with every step counted as one cell (diagonals under by up to 29%).
+  double reach_distance_m(int x, int y) const;
 
  private:
   void find_window(const Eigen::Vector2d& robot, const Eigen::Vector2d& extra);
@@ -115,6 +118,7 @@ class NavigationMap {
   std::unique_ptr<std::uint8_t[]> traversability_;
   std::unique_ptr<float[]> penalty_;  // cost multiplier of entering the cell
   std::unique_ptr<std::uint32_t[]> reached_stamp_;
+  std::unique_ptr<std::int32_t[]> reach_steps_;  // valid where reached_stamp_ is current
   std::unique_ptr<std::int32_t[]> queue_;
   std::uint32_t reach_stamp_ = 0;
   // region_stamp_ of a cell: == region_stamp_ visited, == region_stamp_ + 1 in a pocket.

@@ -13,6 +13,7 @@ struct ExploreConfig {
   double safety_margin_m = 0.10;
   double lethal_margin_cells = 0.5;
   double min_goal_value = 3.0;
+  double goal_distance_cost = 0.0;
   double max_pocket_area_m2 = 3.0;
   double goal_tolerance_m = 0.25;
   double goal_shift_radius_m = 0.0;
@@ -67,6 +68,7 @@ inline void describe(ConfigVisitor& v, ExploreConfig& c) {
   v.integer_field("candidate_stride_cells", c.candidate_stride_cells, {1, 20, "cells", "H is evaluated on a lattice of this spacing, then at full resolution around the best lattice cell."});
   v.number("safety_margin_m", c.safety_margin_m, {0.0, 2.0, "m", "Added to the robot radius when inflating obstacles; goals keep this clearance, paths pay a high cost inside it."});
   v.number("lethal_margin_cells", c.lethal_margin_cells, {0.0, 1.0, "cells", "A cell whose centre is nearer than the robot radius plus this fraction of a cell to an occupied cell's centre is lethal: the obstacle's surface may lie anywhere in its cell. The robot (0.7 m) passes a 0.9 m door with a cell to spare at 0.5, the default; one smeared jamb cell closes it."});
+  v.number("goal_distance_cost", c.goal_distance_cost, {0.0, 100.0, "per m", "Goal selection ranks H(s) minus this much per metre of path from the robot (the reachable fill's distance), so that a goal across the building must be worth that much more than one nearby. 0 (the default): the paper's argmax H, which crossed the office end to end for goals a few points above those beside the robot. Not in the paper."});
   v.number("min_goal_value", c.min_goal_value, {0.0, 1000.0, "", "Exploration ends when no goal is worth more than this (about three rays seeing unknown space at r*; small unknown pockets, such as the floor under a table, are not worth a trip)."});
   v.number("max_pocket_area_m2", c.max_pocket_area_m2, {0.0, 1000.0, "m^2", "An unknown region enclosed by known cells and no larger than this (inside a low box or cupboard, under a table, along a wall) cannot be seen from the free space and is not a frontier; 0 treats every unknown region as a frontier."});
   v.number("goal_tolerance_m", c.goal_tolerance_m, {0.01, 5.0, "m", "A goal is reached within this distance."});
