@@ -10,10 +10,10 @@
 // a remembered (blacklisted or visited) goal. With explore.goal_distance_cost > 0 (not in the
 // paper) it is argmax H - cost * d instead, d the reachable cell's path distance from the
 // robot (NavigationMap::reach_distance_m): a goal across the building has to be worth that
-// much more than one nearby. Goal::value stays H, which decides when nothing is left. Speed: H is evaluated only on a lattice of
-// candidate_stride_cells spacing and only where an unknown cell lies within the ray cap (the
-// distance transform of the navigation map says so, H is 0 elsewhere), then at full
-// resolution in the lattice cell around the best candidate.
+// much more than one nearby. Goal::value stays H, which decides when nothing is left.
+// Speed: H is evaluated only on a lattice of candidate_stride_cells spacing and only where an
+// unknown cell lies within the ray cap (the distance transform of the navigation map says so,
+// H is 0 elsewhere), then at full resolution in the lattice cell around the best candidate.
 
 #include <cstdint>
 
