@@ -6,6 +6,7 @@
 #include "stereoscout/core/check.hpp"
 
 namespace stereoscout::occupancy {
+
 ScanArchive::ScanArchive(const GridGeometry& extent, double resolution_m, double tile_m, std::size_t tile_capacity,
                          const LogOddsModel& model, slam::TrajectoryTree& tree)
     : extent_(extent), resolution_m_(resolution_m), tree_(tree) {
