@@ -68,7 +68,8 @@ Explorer::Explorer(const ExploreParams& params)
       map_(params),
       goal_value_(params),
       memory_(static_cast<std::size_t>(params.explore.goal_memory), params.explore.visited_goal_radius_m,
-              params.explore.blacklist_radius_m, params.explore.goal_failures_before_blacklist),
+              params.explore.blacklist_radius_m, params.explore.goal_failures_before_blacklist,
+              params.explore.failed_goal_cooldown_s),
       stall_(params.explore),
       contacts_(params.explore, params.max_width, params.max_height),
       traces_(params.explore, params.max_width, params.max_height),
@@ -323,6 +324,8 @@ void Explorer::begin_pursuit(const ExploreInput& input) {
   last_progress_time_s_ = input.time_s;
   goal_started_s_ = input.time_s;
   longest_plan_m_ = 0.0;
+  nearest_remaining_m_ = std::numeric_limits<double>::infinity();
+  nearest_remaining_time_s_ = input.time_s;
 }
 
 void Explorer::begin_walker_waits() {
@@ -350,10 +353,23 @@ bool Explorer::out_of_time(double time_s) const {
   return time_s - goal_started_s_ > params_.explore.stuck_timeout_s + params_.explore.goal_time_factor * driving_s;
 }
 
+// Progress along the current plan restarts with each longer plan (above); a robot that goes
+// back and forth between a route through a gap that one view opens and the next closes (a
+// blank wall) and the long way round progresses on each and gets no nearer.
+bool Explorer::without_net_progress(double remaining_m, double time_s) {
+  if (remaining_m < nearest_remaining_m_ - kProgressStep_m) {
+    nearest_remaining_m_ = remaining_m;
+    nearest_remaining_time_s_ = time_s;
+    return false;
+  }
+  const double timeout_s = params_.explore.net_progress_timeout_s;
+  return timeout_s > 0.0 && time_s - nearest_remaining_time_s_ > timeout_s;
+}
+
 void Explorer::choose_goal(const ExploreInput& input) {
   map_.compute_reachable(cell_of(input.pose));
   for (int attempt = 0; attempt < kGoalAttemptsPerTick; ++attempt) {
-    const Goal goal = goal_value_.select(map_, memory_);
+    const Goal goal = goal_value_.select(map_, memory_, input.time_s);
     if (!goal.valid || goal.value <= params_.explore.min_goal_value) {
       // Conclude only from a fresh look: a person who walked past may have left cells that box
       // the robot in or hide the rest, and a look from here re-observes them.
@@ -427,7 +443,7 @@ void Explorer::goal_failed(const ExploreInput& input) {
   }
   ++counters_.goal_failures;
   note(ExploreEventKind::goal_failed, input);
-  if (memory_.record_failure(goal_.position)) {
+  if (memory_.record_failure(goal_.position, input.time_s)) {
     counters_.goals_blacklisted = memory_.blacklisted();
     note(ExploreEventKind::goal_blacklisted, input);
   }
@@ -522,6 +538,12 @@ void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
   if (out_of_time(input.time_s)) {
     ++counters_.goal_timeouts;
     note(ExploreEventKind::goal_timeout, input);
+    goal_failed(input);
+    return;
+  }
+  if (without_net_progress(distance, input.time_s)) {
+    ++counters_.net_progress_timeouts;
+    note(ExploreEventKind::no_net_progress, input);
     goal_failed(input);
     return;
   }

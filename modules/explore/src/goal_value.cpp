@@ -13,12 +13,13 @@ double squared(double value) { return value * value; }
 }  // namespace
 
 GoalMemory::GoalMemory(std::size_t capacity, double radius_m, double blacklist_radius_m,
-                       int failures_before_blacklist)
+                       int failures_before_blacklist, double cooldown_s)
     : entries_(capacity),
       radius2_(squared(radius_m)),
       // Never below the visited radius: failures add up within it.
       blacklist_radius2_(squared(std::max(radius_m, blacklist_radius_m))),
-      failures_before_blacklist_(failures_before_blacklist) {}
+      failures_before_blacklist_(failures_before_blacklist),
+      cooldown_s_(cooldown_s) {}
 
 GoalMemory::Entry* GoalMemory::find(const Eigen::Vector2d& position) {
   for (Entry& entry : entries_) {
@@ -27,7 +28,7 @@ GoalMemory::Entry* GoalMemory::find(const Eigen::Vector2d& position) {
   return nullptr;
 }
 
-bool GoalMemory::record_failure(const Eigen::Vector2d& position) {
+bool GoalMemory::record_failure(const Eigen::Vector2d& position, double time_s) {
   Entry* entry = find(position);
   if (entry == nullptr) {
     entry = entries_.emplace_back(Entry{position, 0});
@@ -37,6 +38,7 @@ bool GoalMemory::record_failure(const Eigen::Vector2d& position) {
     }
   }
   if (entry->failures >= failures_before_blacklist_) return true;
+  entry->last_failure_s = time_s;
   if (++entry->failures < failures_before_blacklist_) return false;
   ++blacklisted_;
   return true;
@@ -53,9 +55,10 @@ void GoalMemory::record_visit(const Eigen::Vector2d& position) {
   entry->visited = true;
 }
 
-bool GoalMemory::excluded(const Eigen::Vector2d& position) const {
+bool GoalMemory::excluded(const Eigen::Vector2d& position, double time_s) const {
   for (const Entry& entry : entries_) {
-    if (entry.failures < failures_before_blacklist_) continue;
+    const bool cooling = entry.failures > 0 && time_s - entry.last_failure_s < cooldown_s_;
+    if (entry.failures < failures_before_blacklist_ && !cooling) continue;
     const double radius2 = entry.visited ? radius2_ : blacklist_radius2_;
     if ((entry.position - position).squaredNorm() <= radius2) return true;
   }
@@ -111,21 +114,22 @@ double GoalValue::value(const NavigationMap& map, int x, int y) const {
   return sum;
 }
 
-bool GoalValue::is_candidate(const NavigationMap& map, const GoalMemory& memory, int x, int y) const {
+bool GoalValue::is_candidate(const NavigationMap& map, const GoalMemory& memory, double time_s, int x,
+                             int y) const {
   const GridView& grid = map.grid();
   return grid.contains(x, y) && grid.at(x, y) == CellState::free &&
          map.traversability(x, y) == Traversability::safe && map.reachable(x, y) &&
-         map.unknown_distance_m(x, y) <= params_.ray_cap_m() && !memory.excluded(grid.center(x, y));
+         map.unknown_distance_m(x, y) <= params_.ray_cap_m() && !memory.excluded(grid.center(x, y), time_s);
 }
 
-Goal GoalValue::select(const NavigationMap& map, const GoalMemory& memory) const {
+Goal GoalValue::select(const NavigationMap& map, const GoalMemory& memory, double time_s) const {
   const GridView& grid = map.grid();
   const CellBox& box = map.window();
   const int stride = params_.explore.candidate_stride_cells;
   Goal best;
   const double distance_cost = params_.explore.goal_distance_cost;
   auto consider = [&](int x, int y) {
-    if (!is_candidate(map, memory, x, y)) return;
+    if (!is_candidate(map, memory, time_s, x, y)) return;
     const double h = value(map, x, y);
     if (h <= 0.0) return;
     const double utility = distance_cost > 0.0 ? h - distance_cost * map.reach_distance_m(x, y) : h;

@@ -813,6 +813,92 @@ TEST(Explorer, AGoalTakingFarLongerThanItsPlanFailsOnItsTimeLimit) {
   }
 }
 
+// A wall at x = 5 m with two ways through: a gap level with the robot and an opening at the
+// bottom. Each view closes one and opens the other, as views of a blank wall did in the
+// office: the robot heads for the gap, which closes as it comes near, turns for the long way
+// round, which closes in its turn while the gap opens again, and so on.
+struct GapThatComesAndGoes {
+  TestGrid grid{100, 60, CellState::free};
+  GapThatComesAndGoes() {
+    grid.walls();
+    grid.fill(80, 30, 99, 59, CellState::unknown);
+    grid.fill(50, 1, 52, 59, CellState::occupied);
+    open_gap(true);
+  }
+  void open_gap(bool gap) {
+    grid.fill(50, 38, 52, 50, gap ? CellState::free : CellState::occupied);
+    grid.fill(50, 1, 52, 13, gap ? CellState::occupied : CellState::free);
+  }
+};
+
+// Drives the robot along whatever plan the explorer has at 0.12 m/s. The gap closes when
+// the robot comes within 0.6 m of the wall, and opens again (the bottom closing) after
+// `detour_s` on the way round. Returns the time the goal failed, or -1.
+double chase_the_gap(Explorer& explorer, GapThatComesAndGoes& scene, double until_s) {
+  constexpr double dt = 0.1;
+  constexpr double detour_s = 8.0;
+  core::Pose2 pose{1.0, 4.3, 0.0};
+  explorer.step(input_at(scene.grid.view(), pose.x, pose.y, pose.theta, 0.0, true));
+  std::vector<Eigen::Vector2d> planned = plan_of(explorer);
+  std::vector<Eigen::Vector2d> plan = planned;
+  double plan_since_s = 0.0;
+  bool gap_open = true;
+  for (double t = dt; t < until_s; t += dt) {
+    bool updated = false;
+    if (gap_open && pose.x > 4.4) {
+      gap_open = false;
+      updated = true;
+    } else if (!gap_open && t - plan_since_s > detour_s) {
+      gap_open = true;
+      updated = true;
+    }
+    scene.open_gap(gap_open);
+    explorer.step(input_at(scene.grid.view(), pose.x, pose.y, pose.theta, t, updated));
+    if (explorer.counters().goal_failures > 0) return t;
+    if (explorer.counters().goals_reached > 0) return -1.0;
+    if (plan_of(explorer) != planned) {
+      planned = plan_of(explorer);
+      plan = planned;
+      plan_since_s = t;
+      plan.insert(plan.begin(), Eigen::Vector2d(pose.x, pose.y));
+    }
+    pose = along(plan, 0.12 * (t - plan_since_s));
+  }
+  return -1.0;
+}
+
+// Progress along each new plan resets the stuck timer, and a goal's time limit grows with its
+// longest plan: a robot going back and forth between two routes comes no nearer to its goal
+// and would go on to its time limit. With net_progress_timeout_s it fails after that long
+// without getting nearer than before; without it, it is still going when the test ends.
+TEST(Explorer, ARobotGoingBackAndForthBetweenTwoRoutesFailsWithoutNetProgress) {
+  for (const double timeout_s : {30.0, 0.0}) {
+    GapThatComesAndGoes scene;
+    ExploreParams params = no_look_params(100, 60);
+    params.explore.stuck_timeout_s = 10.0;
+    params.explore.goal_time_factor = 0.0;
+    params.explore.net_progress_timeout_s = timeout_s;
+    Explorer explorer(params);
+    const double failed_s = chase_the_gap(explorer, scene, 240.0);
+    EXPECT_GT(explorer.counters().replans, 4U) << timeout_s;  // it went back and forth
+    EXPECT_EQ(explorer.counters().stuck, 0U) << timeout_s;
+    EXPECT_EQ(explorer.counters().goals_reached, 0U) << timeout_s;
+    if (timeout_s == 0.0) {
+      EXPECT_LT(failed_s, 0.0);
+      continue;
+    }
+    EXPECT_EQ(explorer.counters().net_progress_timeouts, 1U);
+    EXPECT_EQ(explorer.counters().goal_failures, 1U);
+    EXPECT_GT(failed_s, timeout_s);
+    EXPECT_LT(failed_s, 120.0);
+    bool journaled = false;
+    for (std::size_t i = 0; i < explorer.journal().size(); ++i) {
+      journaled = journaled || explorer.journal()[i].kind == ExploreEventKind::no_net_progress;
+    }
+    EXPECT_TRUE(journaled);
+  }
+}
+
 // The robot starts in a disc whose floor the camera cannot see. A strip of it that no later
 // view covered can be the only way on (the office's corridor, beside the first office's
 // door): its cells stay passable all the run, not only near the robot or on the way back.

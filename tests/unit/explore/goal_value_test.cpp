@@ -111,6 +111,30 @@ TEST(GoalMemory, ABlacklistedGoalSkipsItsNeighbourhoodAVisitedOneOnlyItsSpot) {
   EXPECT_FALSE(memory.excluded(visited + Eigen::Vector2d(0.6, 0.0)));
 }
 
+// A goal that just failed (no way through a blank wall yet, a passer-by in the door) is not
+// taken up again at once: for the cooldown it excludes its neighbourhood as a blacklisted one
+// does, then it may be chosen again, until its last allowed failure blacklists it for good.
+TEST(GoalMemory, AGoalThatJustFailedIsSkippedForTheCooldownOnly) {
+  GoalMemory memory(8, 0.5, 2.0, 3, 300.0);
+  const Eigen::Vector2d goal(1.35, 8.55);
+  const Eigen::Vector2d beside = goal + Eigen::Vector2d(1.5, 0.0);
+  EXPECT_FALSE(memory.excluded(beside, 100.0));
+  EXPECT_FALSE(memory.record_failure(goal, 100.0));
+  EXPECT_TRUE(memory.excluded(goal, 100.0));
+  EXPECT_TRUE(memory.excluded(beside, 399.0));
+  EXPECT_FALSE(memory.excluded(goal + Eigen::Vector2d(2.1, 0.0), 101.0));
+  EXPECT_FALSE(memory.excluded(beside, 400.0));
+  EXPECT_FALSE(memory.record_failure(goal, 500.0));  // a second failure restarts the cooldown
+  EXPECT_TRUE(memory.excluded(beside, 700.0));
+  EXPECT_FALSE(memory.excluded(beside, 801.0));
+  EXPECT_TRUE(memory.record_failure(goal, 900.0));
+  EXPECT_TRUE(memory.excluded(beside, 1e6));
+
+  GoalMemory without(8, 0.5, 2.0, 3);  // no cooldown: the default
+  without.record_failure(goal, 100.0);
+  EXPECT_FALSE(without.excluded(goal, 100.0));
+}
+
 // A known free room (walls around) with an unknown region beyond its right wall seen through
 // a doorway, and a second free room that is not connected to the robot's.
 struct SelectionScene {
@@ -149,7 +173,7 @@ TEST(GoalValue, SelectsAReachableSafeCellFacingTheUnknown) {
   double best = 0.0;
   for (int y = 0; y < 60; ++y) {
     for (int x = 0; x < 120; ++x) {
-      if (goal_value.is_candidate(map, memory, x, y)) best = std::max(best, goal_value.value(scene.grid.view(), x, y));
+      if (goal_value.is_candidate(map, memory, 0.0, x, y)) best = std::max(best, goal_value.value(scene.grid.view(), x, y));
     }
   }
   EXPECT_GT(goal.value, 0.9 * best);  // lattice then local refinement finds (nearly) the optimum

@@ -27,7 +27,8 @@ enum class ExploreEventKind : std::uint8_t {
   no_plan,           // A* found no path to the goal (or the start)
   stuck,             // no progress along the plan for stuck_timeout_s
   goal_timeout,      // pursued longer than its plans' driving time allows (goal_time_factor)
-  goal_failed,       // the goal is given up (after no_plan, stuck or goal_timeout)
+  no_net_progress,   // no nearer to it than ever before, along any plan, for net_progress_timeout_s
+  goal_failed,       // the goal is given up (after no_plan, stuck, goal_timeout or no_net_progress)
   goal_blacklisted,  // ... for good: it failed goal_failures_before_blacklist times
   safety_stop,       // the next stretch would touch an occupied cell
   scan_stop,         // ... the grid clear, but the latest scan saw an obstacle there (scan_guard_min_points)

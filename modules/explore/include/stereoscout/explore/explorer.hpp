@@ -83,6 +83,7 @@ struct ExploreCounters {
   std::uint64_t goal_shifts = 0;       // plans to a passable cell near a goal whose own cell became impassable
   std::uint64_t stuck = 0;
   std::uint64_t goal_timeouts = 0;    // pursued longer than goal_time_factor allows
+  std::uint64_t net_progress_timeouts = 0;  // no nearer than ever before for net_progress_timeout_s
   std::uint64_t safety_stops = 0;
   std::uint64_t scan_guard_stops = 0;  // holds for the latest scan's obstacles, the grid clear there (no look)
   std::uint64_t turns_to_face_plan = 0;  // ticks turning to face the plan instead of a safety stop
@@ -138,6 +139,7 @@ class Explorer {
   void begin_pursuit(const ExploreInput& input);
   double remaining_path_m(const Eigen::Vector2d& position) const;
   bool out_of_time(double time_s) const;
+  bool without_net_progress(double remaining_m, double time_s);
   void choose_goal(const ExploreInput& input);
   void finish_exploring(const ExploreInput& input, FinishReason reason);
   void goal_failed(const ExploreInput& input);
@@ -206,6 +208,9 @@ class Explorer {
   double last_progress_time_s_ = 0.0;
   double goal_started_s_ = 0.0;
   double longest_plan_m_ = 0.0;
+  // Net progress: the shortest remaining length of any of the goal's plans, and when it was.
+  double nearest_remaining_m_ = 0.0;
+  double nearest_remaining_time_s_ = 0.0;
   // Plans kept for passers-by (wait_for_walkers): the time spent so on this goal (or the way back).
   bool waiting_for_walkers_ = false;
   double walker_wait_since_s_ = 0.0;

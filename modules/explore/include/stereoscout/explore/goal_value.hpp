@@ -35,16 +35,19 @@ struct Goal {
 // of each other count as one goal's. A visited goal excludes candidates within radius_m; a
 // blacklisted one within blacklist_radius_m, which may be larger: a room seen through a door
 // the robot cannot pass (too narrow, or hung with something at its height) offers one goal
-// after another beside the last, and each failure costs a drive there.
+// after another beside the last, and each failure costs a drive there. With a cooldown, a goal
+// that failed less than cooldown_s ago also excludes candidates within blacklist_radius_m.
 class GoalMemory {
  public:
-  GoalMemory(std::size_t capacity, double radius_m, double blacklist_radius_m, int failures_before_blacklist);
-  // Counts a failure of the goal at `position`; returns true when it is now blacklisted.
-  bool record_failure(const Eigen::Vector2d& position);
+  GoalMemory(std::size_t capacity, double radius_m, double blacklist_radius_m, int failures_before_blacklist,
+             double cooldown_s = 0.0);
+  // Counts a failure at time_s of the goal at `position`; returns true when it is now blacklisted.
+  bool record_failure(const Eigen::Vector2d& position, double time_s = 0.0);
   // A reached goal is never chosen again (it was looked around from).
   void record_visit(const Eigen::Vector2d& position);
-  // True when a candidate at `position` is near a blacklisted or visited goal.
-  bool excluded(const Eigen::Vector2d& position) const;
+  // True when a candidate at `position` is near a blacklisted or visited goal, or at time_s
+  // near one that failed within the cooldown.
+  bool excluded(const Eigen::Vector2d& position, double time_s = 0.0) const;
   std::uint64_t blacklisted() const { return blacklisted_; }
   std::uint64_t forgotten() const { return forgotten_; }  // memory was full
 
@@ -53,12 +56,14 @@ class GoalMemory {
     Eigen::Vector2d position;
     int failures = 0;
     bool visited = false;
+    double last_failure_s = 0.0;
   };
   Entry* find(const Eigen::Vector2d& position);
   core::FixedVector<Entry> entries_;
   double radius2_;
   double blacklist_radius2_;
   int failures_before_blacklist_;
+  double cooldown_s_;
   std::uint64_t blacklisted_ = 0;
   std::uint64_t forgotten_ = 0;
 };
@@ -78,8 +83,9 @@ class GoalValue {
 
   // argmax H over the candidates (see above); `map` must have compute_reachable() done.
   // Returns an invalid goal when no candidate is worth more than zero.
-  Goal select(const NavigationMap& map, const GoalMemory& memory) const;
-  bool is_candidate(const NavigationMap& map, const GoalMemory& memory, int x, int y) const;
+  // time_s is now, for the memory's cooldown.
+  Goal select(const NavigationMap& map, const GoalMemory& memory, double time_s = 0.0) const;
+  bool is_candidate(const NavigationMap& map, const GoalMemory& memory, double time_s, int x, int y) const;
   std::uint64_t values_computed() const { return values_computed_; }
 
  private:

@@ -44,6 +44,8 @@ struct ExploreConfig {
   double walker_wait_per_goal_s = 20.0;
   double stuck_timeout_s = 40.0;
   double goal_time_factor = 3.0;
+  double net_progress_timeout_s = 0.0;
+  double failed_goal_cooldown_s = 0.0;
   double stall_window_s = 1.0;
   double stall_min_commanded_m = 0.04;
   double stall_progress_fraction = 0.25;
@@ -100,6 +102,8 @@ inline void describe(ConfigVisitor& v, ExploreConfig& c) {
   v.number("remembered_obstacle_cost", c.remembered_obstacle_cost, {0.0, 10000.0, "", "Extra A* cost per metre through a cell the explorer saw standing (trace_view_updates) that the grid now holds free or unknown: a blank wall's cells, erased by rays that graze it or by floor seen from its other side with another pose error, stay costly to cross, so plans take the door rather than the gap. A cost, not an obstacle, so a map that shifted with the pose estimate does not close doors. 0 = off, the default: at 200 it lowered the office's coverage on two seeds of two measured (36.8% against 46.8% on their mean; docs/results.md). Not in the paper."});
   v.number("stuck_timeout_s", c.stuck_timeout_s, {1.0, 100000.0, "s", "A goal fails when the robot got no closer to it along its plan (the plan's remaining length) for this long."});
   v.number("goal_time_factor", c.goal_time_factor, {0.0, 1000.0, "", "A goal (or the way back) also fails when pursued for longer than stuck_timeout_s plus this many times the driving time of its longest plan at robot.max_speed_mps. Progress is measured along the plan and a longer plan (a detour around a wall the map had held free) restarts it, so a robot alternating between two routes would otherwise never fail. 0: no limit. Not in the paper."});
+  v.number("net_progress_timeout_s", c.net_progress_timeout_s, {0.0, 100000.0, "s", "A goal (or the way back) also fails when the robot has not come nearer to it than ever before, along whichever plan it has, for this long. stuck_timeout_s measures progress along the current plan and restarts with a longer one; a robot that goes back and forth between a short route through a gap the map holds in a blank wall and the long way round makes progress on each and comes no nearer. 0 = off. Not in the paper."});
+  v.number("failed_goal_cooldown_s", c.failed_goal_cooldown_s, {0.0, 100000.0, "s", "Candidates within blacklist_radius_m of a goal that failed less than this long ago are not chosen, so that a goal that just failed is not taken up again at once, from where it failed, before the others are tried (it is still chosen again later, up to goal_failures_before_blacklist failures). 0 = off. Not in the paper."});
   v.number("stall_window_s", c.stall_window_s, {0.1, 60.0, "s", "Stall detector: the commanded forward travel and the travel the pose shows (odometry between updates) are compared over windows this long."});
   v.number("stall_min_commanded_m", c.stall_min_commanded_m, {0.001, 10.0, "m", "Stall detector: a window is judged only when at least this much forward travel was commanded in it."});
   v.number("stall_progress_fraction", c.stall_progress_fraction, {0.0, 1.0, "", "Stall detector: the robot is stalled (pushing against something it did not see) when it moved less than this fraction of the commanded travel."});
