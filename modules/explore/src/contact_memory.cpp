@@ -48,17 +48,23 @@ ContactMemory::ContactMemory(const core::ExploreConfig& config, int max_width, i
     : arc_rad_(core::degrees_to_radians(config.contact_arc_deg)),
       hold_s_(config.contact_hold_s),
       repeat_radius_m_(config.contact_repeat_radius_m),
+      trail_radius_m_(config.trail_contact_radius_m),
       contacts_(static_cast<std::size_t>(config.contact_memory)),
       cleared_points_(static_cast<std::size_t>(config.contact_memory)),
       cells_(new std::uint8_t[static_cast<std::size_t>(max_width) * static_cast<std::size_t>(max_height)]),
       cell_capacity_(static_cast<std::size_t>(max_width) * static_cast<std::size_t>(max_height)) {}
 
-void ContactMemory::record(const GridView& grid, const core::Pose2& pose, double radius_m, double time_s) {
+void ContactMemory::record(const GridView& grid, const core::Pose2& pose, double radius_m, double time_s,
+                           const TrailMemory& trail) {
   // Just beyond the rim: the surface the robot pushes against lies in that cell.
   const double reach = radius_m + 0.5 * grid.resolution_m;
   for (const double offset : {0.0, -arc_rad_, arc_rad_}) {
     const double angle = pose.theta + offset;
     const Eigen::Vector2d point = pose.translation() + reach * Eigen::Vector2d(std::cos(angle), std::sin(angle));
+    if (on_trail(point, trail)) {
+      ++on_trail_;
+      continue;
+    }
     const Eigen::Vector2i cell = grid.cell_of(point);
     const bool free = grid.contains(cell.x(), cell.y()) && grid.at(cell.x(), cell.y()) == CellState::free;
     const bool repeated = near_a_cleared_contact(point);
@@ -66,6 +72,15 @@ void ContactMemory::record(const GridView& grid, const core::Pose2& pose, double
     if (repeated) ++repeated_;
     if (contacts_.emplace_back(Contact{point, time_s, free, repeated}) == nullptr) ++forgotten_full_;
   }
+}
+
+bool ContactMemory::on_trail(const Eigen::Vector2d& point, const TrailMemory& trail) const {
+  if (trail_radius_m_ <= 0.0) return false;
+  const double radius2 = trail_radius_m_ * trail_radius_m_;
+  for (std::size_t i = 0; i < trail.size(); ++i) {
+    if ((trail[i].position - point).squaredNorm() <= radius2) return true;
+  }
+  return false;
 }
 
 bool ContactMemory::near_a_cleared_contact(const Eigen::Vector2d& point) const {

@@ -551,7 +551,7 @@ void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
     // Pushing against something no view showed: keep its cells and plan around them.
     ++counters_.stalls;
     note(ExploreEventKind::stall, input);
-    contacts_.record(map_.grid(), input.pose, params_.robot_radius_m, input.time_s);
+    contacts_.record(map_.grid(), input.pose, params_.robot_radius_m, input.time_s, trail_);
     if (params_.explore.stall_back_off_m > 0.0) {
       ++counters_.back_offs;
       backing_off_ = true;

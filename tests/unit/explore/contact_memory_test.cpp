@@ -66,13 +66,14 @@ TEST(StallDetector, TurningInPlaceOrStandingIsNeverAStall) {
 }
 
 TEST(ContactMemory, MarksTheCellsBeyondTheRimAheadAndForgetsThemWhenSeenFree) {
+  const TrailMemory no_trail{core::ExploreConfig{}};  // the robot has not driven anywhere
   TestGrid grid(60, 60, CellState::free);
   grid.fill(40, 0, 60, 60, CellState::unknown);  // a blank wall from x = 4 m: never seen
   const core::ExploreConfig config;
   ContactMemory memory(config, 60, 60);
   const double radius_m = 0.35;
   // Touching it head on: centre 0.36 m before the wall.
-  memory.record(grid.view(), core::Pose2{3.64, 3.05, 0.0}, radius_m, 100.0);
+  memory.record(grid.view(), core::Pose2{3.64, 3.05, 0.0}, radius_m, 100.0, no_trail);
   EXPECT_EQ(memory.recorded(), 3U);
   EXPECT_EQ(memory.held(), 3U);
   const GridView stamped = memory.stamp(grid.view(), 101.0);
@@ -97,11 +98,12 @@ TEST(ContactMemory, MarksTheCellsBeyondTheRimAheadAndForgetsThemWhenSeenFree) {
 }
 
 TEST(ContactMemory, ACellTheGridHeldFreeAtTheContactIsKeptUntilItExpires) {
+  const TrailMemory no_trail{core::ExploreConfig{}};  // the robot has not driven anywhere
   TestGrid grid(60, 60, CellState::free);  // the grid is wrong there: a surface it cannot see
   core::ExploreConfig config;
   config.contact_hold_s = 60.0;
   ContactMemory memory(config, 60, 60);
-  memory.record(grid.view(), core::Pose2{3.64, 3.05, 0.0}, 0.35, 100.0);
+  memory.record(grid.view(), core::Pose2{3.64, 3.05, 0.0}, 0.35, 100.0, no_trail);
   EXPECT_EQ(memory.stamp(grid.view(), 150.0).at(40, 30), CellState::occupied);
   EXPECT_EQ(memory.held(), 3U);
   EXPECT_EQ(memory.stamp(grid.view(), 161.0).at(40, 30), CellState::free);
@@ -110,9 +112,10 @@ TEST(ContactMemory, ACellTheGridHeldFreeAtTheContactIsKeptUntilItExpires) {
 }
 
 TEST(ContactMemory, ClearForgetsEveryContactAndCountsThem) {
+  const TrailMemory no_trail{core::ExploreConfig{}};  // the robot has not driven anywhere
   TestGrid grid(60, 60, CellState::unknown);
   ContactMemory memory(core::ExploreConfig{}, 60, 60);
-  memory.record(grid.view(), core::Pose2{3.02, 3.05, 0.0}, 0.35, 1.0);
+  memory.record(grid.view(), core::Pose2{3.02, 3.05, 0.0}, 0.35, 1.0, no_trail);
   ASSERT_EQ(memory.stamp(grid.view(), 2.0).at(34, 30), CellState::occupied);
   EXPECT_EQ(memory.clear(), 3U);
   EXPECT_EQ(memory.held(), 0U);
@@ -126,14 +129,15 @@ TEST(ContactMemory, ClearForgetsEveryContactAndCountsThem) {
 // nothing else to do and clears the contact, and drives into it again. That second contact is
 // real and outlives the next clear; a contact elsewhere is cleared as before.
 TEST(ContactMemory, AContactMadeAgainWhereOneWasClearedIsNotClearedAgain) {
+  const TrailMemory no_trail{core::ExploreConfig{}};  // the robot has not driven anywhere
   TestGrid grid(60, 60, CellState::free);
   core::ExploreConfig config;
   config.contact_repeat_radius_m = 0.2;
   ContactMemory memory(config, 60, 60);
-  memory.record(grid.view(), core::Pose2{3.02, 3.05, 0.0}, 0.35, 1.0);
+  memory.record(grid.view(), core::Pose2{3.02, 3.05, 0.0}, 0.35, 1.0, no_trail);
   EXPECT_EQ(memory.clear(), 3U);
-  memory.record(grid.view(), core::Pose2{3.05, 3.1, 0.1}, 0.35, 20.0);  // the same pillar
-  memory.record(grid.view(), core::Pose2{1.0, 1.0, 3.0}, 0.35, 21.0);   // elsewhere
+  memory.record(grid.view(), core::Pose2{3.05, 3.1, 0.1}, 0.35, 20.0, no_trail);  // the same pillar
+  memory.record(grid.view(), core::Pose2{1.0, 1.0, 3.0}, 0.35, 21.0, no_trail);   // elsewhere
   EXPECT_EQ(memory.repeated(), 3U);
   EXPECT_EQ(memory.clear(), 3U);
   EXPECT_EQ(memory.held(), 3U);
@@ -145,21 +149,49 @@ TEST(ContactMemory, AContactMadeAgainWhereOneWasClearedIsNotClearedAgain) {
 
   config.contact_repeat_radius_m = 0.0;  // off: every clear forgets every contact
   ContactMemory off(config, 60, 60);
-  off.record(grid.view(), core::Pose2{3.02, 3.05, 0.0}, 0.35, 1.0);
+  off.record(grid.view(), core::Pose2{3.02, 3.05, 0.0}, 0.35, 1.0, no_trail);
   EXPECT_EQ(off.clear(), 3U);
-  off.record(grid.view(), core::Pose2{3.05, 3.1, 0.1}, 0.35, 20.0);
+  off.record(grid.view(), core::Pose2{3.05, 3.1, 0.1}, 0.35, 20.0, no_trail);
   EXPECT_EQ(off.clear(), 3U);
   EXPECT_EQ(off.repeated(), 0U);
 }
 
+// The robot came into a room through a 0.9 m door in a wall at y = 3 m, driving south down
+// its middle (x = 3 m). Leaving by it, it touches the east jamb while heading north-east: the
+// point straight ahead and the one to its left lie where its centre passed on the way in, and
+// are not recorded, so the doorway stays open to plans; the one on the jamb's side is.
+TEST(ContactMemory, ContactPointsWhereTheRobotHadDrivenAreNotRecorded) {
+  TestGrid grid(60, 60, CellState::free);
+  core::ExploreConfig config;
+  config.trail_contact_radius_m = 0.25;
+  TrailMemory trail(config);
+  for (double y = 5.0; y >= 1.0; y -= 0.05) trail.record(Eigen::Vector2d(3.0, y));
+  ContactMemory memory(config, 60, 60);
+  const core::Pose2 touching{3.05, 2.7, 1.2};  // 0.4 m ahead: (3.19, 3.07); 25 degrees left: (3.02, 3.10)
+  memory.record(grid.view(), touching, 0.35, 10.0, trail);
+  EXPECT_EQ(memory.on_trail(), 2U);
+  EXPECT_EQ(memory.held(), 1U);
+  EXPECT_EQ(memory.recorded(), 1U);
+  const GridView stamped = memory.stamp(grid.view(), 11.0);
+  EXPECT_EQ(stamped.at(31, 30), CellState::free);      // the doorway, straight ahead
+  EXPECT_EQ(stamped.at(33, 29), CellState::occupied);  // 25 degrees right: (3.34, 2.98), towards the jamb
+
+  config.trail_contact_radius_m = 0.0;  // off: all three are recorded
+  ContactMemory off(config, 60, 60);
+  off.record(grid.view(), touching, 0.35, 10.0, trail);
+  EXPECT_EQ(off.held(), 3U);
+  EXPECT_EQ(off.on_trail(), 0U);
+}
+
 TEST(ContactMemory, AFullListCountsWhatItForgetsAndNothingAllocates) {
+  const TrailMemory no_trail{core::ExploreConfig{}};  // the robot has not driven anywhere
   TestGrid grid(60, 60, CellState::unknown);
   core::ExploreConfig config;
   config.contact_memory = 4;
   ContactMemory memory(config, 60, 60);
   const core::AllocationScope counter;
-  memory.record(grid.view(), core::Pose2{3.02, 3.05, 0.0}, 0.35, 1.0);
-  memory.record(grid.view(), core::Pose2{3.02, 3.05, 1.0}, 0.35, 2.0);
+  memory.record(grid.view(), core::Pose2{3.02, 3.05, 0.0}, 0.35, 1.0, no_trail);
+  memory.record(grid.view(), core::Pose2{3.02, 3.05, 1.0}, 0.35, 2.0, no_trail);
   const GridView stamped = memory.stamp(grid.view(), 3.0);
   EXPECT_EQ(counter.allocations(), 0U);
   EXPECT_EQ(memory.held(), 4U);

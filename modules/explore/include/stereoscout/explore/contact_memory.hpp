@@ -19,6 +19,11 @@
 // at the contact is wrong in the grid, a surface it cannot see: only the time limit ends it.)
 // Both rules depend on simulated time and the grid only, so runs stay reproducible.
 //
+// A contact point within trail_contact_radius_m of the robot's own trail (TrailMemory: where
+// its centre was) is not recorded: the robot's disc passed there, so nothing stands there.
+// Leaving a room by the door it came in by, a robot that touches a jamb pushes with the
+// doorway straight ahead, and a contact cell there would close the door for contact_hold_s.
+//
 // The contact cells are where the pose estimate put the rim, so they can close a door the robot
 // touched a jamb of (a contact ahead, another backing out): the explorer clears them before it
 // concludes that nothing is left or gives the return up (clear()). But a contact made again
@@ -31,6 +36,7 @@
 #include "stereoscout/core/fixed_vector.hpp"
 #include "stereoscout/core/geometry.hpp"
 #include "stereoscout/explore/grid_view.hpp"
+#include "stereoscout/explore/trail_memory.hpp"
 
 namespace stereoscout::explore {
 
@@ -64,8 +70,10 @@ class ContactMemory {
   ContactMemory(const core::ExploreConfig& config, int max_width, int max_height);
 
   // Records the cells just beyond the rim of a robot of `radius_m` at `pose`: straight ahead
-  // and contact_arc_deg to either side. `grid`: the grid the robot planned on.
-  void record(const GridView& grid, const core::Pose2& pose, double radius_m, double time_s);
+  // and contact_arc_deg to either side, but those on `trail`. `grid`: the grid the robot
+  // planned on.
+  void record(const GridView& grid, const core::Pose2& pose, double radius_m, double time_s,
+              const TrailMemory& trail);
   // Forgets expired and freed contacts, then returns `grid` with the contact cells occupied:
   // a copy in the memory's own buffer, or `grid` itself when there is no contact (or it is
   // larger than the buffer, counted). Valid until the next call.
@@ -81,6 +89,7 @@ class ContactMemory {
   std::uint64_t expired() const { return expired_; }
   std::uint64_t cleared() const { return cleared_; }
   std::uint64_t repeated() const { return repeated_; }  // contacts made again where one was cleared
+  std::uint64_t on_trail() const { return on_trail_; }  // not recorded: the robot had driven there
   std::uint64_t grid_too_large() const { return grid_too_large_; }
 
  private:
@@ -92,10 +101,12 @@ class ContactMemory {
   };
   bool keep(const Contact& contact, const GridView& grid, double time_s);
   bool near_a_cleared_contact(const Eigen::Vector2d& point) const;
+  bool on_trail(const Eigen::Vector2d& point, const TrailMemory& trail) const;
 
   double arc_rad_;
   double hold_s_;
   double repeat_radius_m_;
+  double trail_radius_m_;
   core::FixedVector<Contact> contacts_;
   core::FixedVector<Eigen::Vector2d> cleared_points_;  // the oldest are kept when it is full
   std::unique_ptr<std::uint8_t[]> cells_;
@@ -106,6 +117,7 @@ class ContactMemory {
   std::uint64_t expired_ = 0;
   std::uint64_t cleared_ = 0;
   std::uint64_t repeated_ = 0;
+  std::uint64_t on_trail_ = 0;
   std::uint64_t grid_too_large_ = 0;
 };
 

@@ -55,6 +55,7 @@ struct ExploreConfig {
   double contact_hold_s = 600.0;
   double contact_repeat_radius_m = 0.2;
   double trail_length_m = 30.0;
+  double trail_contact_radius_m = 0.0;
   int event_memory = 4096;
   double time_limit_s = 3600.0;
   bool pan_at_goal = true;
@@ -112,6 +113,7 @@ inline void describe(ConfigVisitor& v, ExploreConfig& c) {
   v.integer_field("contact_memory", c.contact_memory, {1, 100000, "cells", "Contact cells remembered (fixed list; when full, new ones are counted and forgotten)."});
   v.number("contact_repeat_radius_m", c.contact_repeat_radius_m, {0.0, 5.0, "m", "Before concluding that nothing is left or that there is no way back, the explorer clears the contact cells (they can close a door whose jamb the robot touched); a contact made again within this distance of one it cleared is real and is not cleared again, only forgotten as any contact is. Without this, a plain pillar in a gap the grid held open was driven into 25 times in 430 s, the contact cleared each time the explorer found nothing else to do (clutter, seed 6, docs/results.md). 0 = clear every time. Not in the paper."});
   v.number("trail_length_m", c.trail_length_m, {0.0, 1000.0, "m", "The last this many metres of the robot's own path are remembered (a point every 5 cm). Before concluding that nothing is left or that there is no way back, plans may follow that path where the grid has closed it: its cells count as passable (at the highest obstacle cost) unless occupied or nearer an occupied cell than the robot's radius, where the safety check would stop the robot anyway. A passage the robot came in by can close behind it when a smeared cell narrows it below the lethal width (clutter, seed 6, docs/results.md). 0 = off. Not in the paper."});
+  v.number("trail_contact_radius_m", c.trail_contact_radius_m, {0.0, 5.0, "m", "A contact point (contact_arc_deg) within this distance of the robot's trail (trail_length_m: where its centre was) is not recorded: the robot's disc passed there, so no surface stands there. A robot leaving a room by the door it came in by and touching a jamb pushes with the doorway ahead, and a contact cell there shut the door for contact_hold_s (office seed 2: 600 s in S2). Below the robot's radius by the pose error between the two passes. 0 = off. Not in the paper."});
   v.number("contact_hold_s", c.contact_hold_s, {1.0, 1e7, "s", "A contact cell is forgotten after this long, or earlier when the grid sees its cell free after holding it unknown or occupied (a person who walked on)."});
   v.integer_field("event_memory", c.event_memory, {1, 10000000, "events", "Explorer events kept for the run directory's explore_events.csv (goals chosen, reached and failed, replans, stops, stalls, looks; a fixed ring: when full the oldest is dropped and counted)."});
   v.number("time_limit_s", c.time_limit_s, {1.0, 1e7, "s", "Exploration ends after this long (then returns to start if configured)."});
