@@ -356,12 +356,13 @@ bool Explorer::out_of_time(double time_s) const {
 // Progress along the current plan restarts with each longer plan (above); a robot that goes
 // back and forth between a route through a gap that one view opens and the next closes (a
 // blank wall) and the long way round progresses on each and gets no nearer.
-bool Explorer::without_net_progress(double remaining_m, double time_s) {
-  if (remaining_m < nearest_remaining_m_ - kProgressStep_m) {
-    nearest_remaining_m_ = remaining_m;
-    nearest_remaining_time_s_ = time_s;
-    return false;
-  }
+void Explorer::track_net_progress(double remaining_m, double time_s) {
+  if (remaining_m >= nearest_remaining_m_ - kProgressStep_m) return;
+  nearest_remaining_m_ = remaining_m;
+  nearest_remaining_time_s_ = time_s;
+}
+
+bool Explorer::without_net_progress(double time_s) const {
   const double timeout_s = params_.explore.net_progress_timeout_s;
   return timeout_s > 0.0 && time_s - nearest_remaining_time_s_ > timeout_s;
 }
@@ -541,7 +542,8 @@ void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
     goal_failed(input);
     return;
   }
-  if (without_net_progress(distance, input.time_s)) {
+  track_net_progress(distance, input.time_s);
+  if (without_net_progress(input.time_s)) {
     ++counters_.net_progress_timeouts;
     note(ExploreEventKind::no_net_progress, input);
     goal_failed(input);

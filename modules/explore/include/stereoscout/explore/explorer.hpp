@@ -139,7 +139,8 @@ class Explorer {
   void begin_pursuit(const ExploreInput& input);
   double remaining_path_m(const Eigen::Vector2d& position) const;
   bool out_of_time(double time_s) const;
-  bool without_net_progress(double remaining_m, double time_s);
+  void track_net_progress(double remaining_m, double time_s);
+  bool without_net_progress(double time_s) const;
   void choose_goal(const ExploreInput& input);
   void finish_exploring(const ExploreInput& input, FinishReason reason);
   void goal_failed(const ExploreInput& input);
