@@ -71,7 +71,7 @@ void run_goal_selection(benchmark::State& state, int stride) {
   const GoalValue goal_value(params);
   for (auto _ : state) {
     map.compute_reachable(scene.view.cell_of(scene.robot));
-    benchmark::DoNotOptimize(goal_value.select(map, memory));
+    benchmark::DoNotOptimize(goal_value.select(map, memory, 0.0));
   }
 }
 

@@ -74,15 +74,15 @@ TEST(GoalValue, HSumsSeventyTwoRays) {
 TEST(GoalMemory, BlacklistsAfterTheConfiguredFailures) {
   GoalMemory memory(4, 0.5, 0.5, 3);
   const Eigen::Vector2d goal(2.0, 1.0);
-  EXPECT_FALSE(memory.record_failure(goal));
-  EXPECT_FALSE(memory.record_failure(goal + Eigen::Vector2d(0.2, 0.0)));  // same goal, within radius
-  EXPECT_FALSE(memory.excluded(goal));
-  EXPECT_TRUE(memory.record_failure(goal));
-  EXPECT_TRUE(memory.excluded(goal + Eigen::Vector2d(0.0, 0.4)));
-  EXPECT_FALSE(memory.excluded(goal + Eigen::Vector2d(0.0, 0.6)));
+  EXPECT_FALSE(memory.record_failure(goal, 0.0));
+  EXPECT_FALSE(memory.record_failure(goal + Eigen::Vector2d(0.2, 0.0), 0.0));  // same goal, within radius
+  EXPECT_FALSE(memory.excluded(goal, 0.0));
+  EXPECT_TRUE(memory.record_failure(goal, 0.0));
+  EXPECT_TRUE(memory.excluded(goal + Eigen::Vector2d(0.0, 0.4), 0.0));
+  EXPECT_FALSE(memory.excluded(goal + Eigen::Vector2d(0.0, 0.6), 0.0));
   EXPECT_EQ(memory.blacklisted(), 1U);
   memory.record_visit(Eigen::Vector2d(5.0, 5.0));
-  EXPECT_TRUE(memory.excluded(Eigen::Vector2d(5.0, 5.0)));
+  EXPECT_TRUE(memory.excluded(Eigen::Vector2d(5.0, 5.0), 0.0));
   memory.record_visit(Eigen::Vector2d(7.0, 5.0));
   memory.record_visit(Eigen::Vector2d(9.0, 5.0));
   memory.record_visit(Eigen::Vector2d(11.0, 5.0));  // full: counted, forgotten
@@ -95,20 +95,20 @@ TEST(GoalMemory, BlacklistsAfterTheConfiguredFailures) {
 TEST(GoalMemory, ABlacklistedGoalSkipsItsNeighbourhoodAVisitedOneOnlyItsSpot) {
   GoalMemory memory(8, 0.5, 2.0, 3);
   const Eigen::Vector2d goal(11.35, 8.45);
-  memory.record_failure(goal);
-  memory.record_failure(goal + Eigen::Vector2d(0.0, 0.1));
-  EXPECT_FALSE(memory.excluded(goal + Eigen::Vector2d(-0.4, -0.2)));  // two failures: not yet
-  EXPECT_TRUE(memory.record_failure(goal));
-  EXPECT_TRUE(memory.excluded(goal + Eigen::Vector2d(-0.4, -0.2)));
-  EXPECT_TRUE(memory.excluded(goal + Eigen::Vector2d(-1.9, 0.0)));
-  EXPECT_FALSE(memory.excluded(goal + Eigen::Vector2d(-2.1, 0.0)));
+  memory.record_failure(goal, 0.0);
+  memory.record_failure(goal + Eigen::Vector2d(0.0, 0.1), 0.0);
+  EXPECT_FALSE(memory.excluded(goal + Eigen::Vector2d(-0.4, -0.2), 0.0));  // two failures: not yet
+  EXPECT_TRUE(memory.record_failure(goal, 0.0));
+  EXPECT_TRUE(memory.excluded(goal + Eigen::Vector2d(-0.4, -0.2), 0.0));
+  EXPECT_TRUE(memory.excluded(goal + Eigen::Vector2d(-1.9, 0.0), 0.0));
+  EXPECT_FALSE(memory.excluded(goal + Eigen::Vector2d(-2.1, 0.0), 0.0));
   const Eigen::Vector2d visited(3.0, 3.0);
   memory.record_visit(visited);
-  EXPECT_TRUE(memory.excluded(visited + Eigen::Vector2d(0.4, 0.0)));
-  EXPECT_FALSE(memory.excluded(visited + Eigen::Vector2d(0.6, 0.0)));
+  EXPECT_TRUE(memory.excluded(visited + Eigen::Vector2d(0.4, 0.0), 0.0));
+  EXPECT_FALSE(memory.excluded(visited + Eigen::Vector2d(0.6, 0.0), 0.0));
   // A failed goal that had been visited keeps the visited radius.
-  memory.record_failure(visited);
-  EXPECT_FALSE(memory.excluded(visited + Eigen::Vector2d(0.6, 0.0)));
+  memory.record_failure(visited, 0.0);
+  EXPECT_FALSE(memory.excluded(visited + Eigen::Vector2d(0.6, 0.0), 0.0));
 }
 
 // A goal that just failed (no way through a blank wall yet, a passer-by in the door) is not
@@ -162,7 +162,7 @@ TEST(GoalValue, SelectsAReachableSafeCellFacingTheUnknown) {
   GoalMemory memory(16, params.explore.visited_goal_radius_m, params.explore.blacklist_radius_m,
                     params.explore.goal_failures_before_blacklist);
   const GoalValue goal_value(params);
-  const Goal goal = goal_value.select(map, memory);
+  const Goal goal = goal_value.select(map, memory, 0.0);
   ASSERT_TRUE(goal.valid);
   EXPECT_TRUE(map.reachable(goal.cell.x(), goal.cell.y()));
   EXPECT_EQ(map.traversability(goal.cell.x(), goal.cell.y()), Traversability::safe);
@@ -178,8 +178,8 @@ TEST(GoalValue, SelectsAReachableSafeCellFacingTheUnknown) {
   }
   EXPECT_GT(goal.value, 0.9 * best);  // lattice then local refinement finds (nearly) the optimum
   // Blacklisting the chosen goal moves the choice elsewhere.
-  for (int k = 0; k < params.explore.goal_failures_before_blacklist; ++k) memory.record_failure(goal.position);
-  const Goal next = goal_value.select(map, memory);
+  for (int k = 0; k < params.explore.goal_failures_before_blacklist; ++k) memory.record_failure(goal.position, 0.0);
+  const Goal next = goal_value.select(map, memory, 0.0);
   ASSERT_TRUE(next.valid);
   EXPECT_GT((next.position - goal.position).norm(), params.explore.blacklist_radius_m);
 }
@@ -203,12 +203,12 @@ TEST(GoalValue, ADistanceCostPrefersTheNearGoalToAFarBetterOne) {
   EXPECT_NEAR(map.reach_distance_m(start.x() + 50, start.y() + 10), 5.0, 1e-9) << "8-connected: a diagonal step is one";
   GoalMemory memory(16, params.explore.visited_goal_radius_m, params.explore.blacklist_radius_m,
                     params.explore.goal_failures_before_blacklist);
-  const Goal paper = GoalValue(params).select(map, memory);
+  const Goal paper = GoalValue(params).select(map, memory, 0.0);
   ASSERT_TRUE(paper.valid);
   EXPECT_GT(paper.position.x(), 10.0) << "argmax H: the east end";
   EXPECT_DOUBLE_EQ(paper.utility, paper.value);
   params.explore.goal_distance_cost = 2.0;
-  const Goal near = GoalValue(params).select(map, memory);
+  const Goal near = GoalValue(params).select(map, memory, 0.0);
   ASSERT_TRUE(near.valid);
   EXPECT_LT(near.position.x(), 7.0) << "with the cost: the patch beside the robot";
   EXPECT_LT(near.value, paper.value);

@@ -42,12 +42,12 @@ class GoalMemory {
   GoalMemory(std::size_t capacity, double radius_m, double blacklist_radius_m, int failures_before_blacklist,
              double cooldown_s = 0.0);
   // Counts a failure at time_s of the goal at `position`; returns true when it is now blacklisted.
-  bool record_failure(const Eigen::Vector2d& position, double time_s = 0.0);
+  bool record_failure(const Eigen::Vector2d& position, double time_s);
   // A reached goal is never chosen again (it was looked around from).
   void record_visit(const Eigen::Vector2d& position);
   // True when a candidate at `position` is near a blacklisted or visited goal, or at time_s
   // near one that failed within the cooldown.
-  bool excluded(const Eigen::Vector2d& position, double time_s = 0.0) const;
+  bool excluded(const Eigen::Vector2d& position, double time_s) const;
   std::uint64_t blacklisted() const { return blacklisted_; }
   std::uint64_t forgotten() const { return forgotten_; }  // memory was full
 
@@ -84,7 +84,7 @@ class GoalValue {
   // argmax H over the candidates (see above); `map` must have compute_reachable() done.
   // Returns an invalid goal when no candidate is worth more than zero.
   // time_s is now, for the memory's cooldown.
-  Goal select(const NavigationMap& map, const GoalMemory& memory, double time_s = 0.0) const;
+  Goal select(const NavigationMap& map, const GoalMemory& memory, double time_s) const;
   bool is_candidate(const NavigationMap& map, const GoalMemory& memory, double time_s, int x, int y) const;
   std::uint64_t values_computed() const { return values_computed_; }
 
