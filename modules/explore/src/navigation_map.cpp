@@ -9,6 +9,9 @@ namespace {
 
 constexpr double kNoSiteDistance_m = 1e9;
 constexpr double kDiagonal = 1.4142135623730951;
+// Step of the search for the obstacles either side of a gap, in cells: fine enough not to
+// step over a cell met corner-on.
+constexpr double kGapSearchStepCells = 0.25;
 
 int cells_for(double metres, double resolution_m) { return static_cast<int>(std::ceil(metres / resolution_m)) + 1; }
 
@@ -267,6 +270,34 @@ bool NavigationMap::obstacle_site(int x, int y) const {
   const CellState state = grid_.at(x, y);
   if (state == CellState::occupied) return !under_robot(x, y);
   return state == CellState::unknown && params_.explore.unknown_clearance && !unknown_passable(x, y);
+}
+
+bool NavigationMap::obstacle_ahead_m(const Eigen::Vector2d& from, const Eigen::Vector2d& direction, double reach_m,
+                                     double& distance_m) const {
+  const double step = kGapSearchStepCells * grid_.resolution_m;
+  for (double along = step; along <= reach_m; along += step) {
+    const Eigen::Vector2i cell = grid_.cell_of(from + along * direction);
+    if (!window_.contains(cell.x(), cell.y())) return false;
+    if (obstacle_site(cell.x(), cell.y())) {
+      distance_m = (grid_.center(cell.x(), cell.y()) - from).dot(direction);
+      return true;
+    }
+  }
+  return false;
+}
+
+Eigen::Vector2d NavigationMap::centred_in_gap(const Eigen::Vector2i& cell, const Eigen::Vector2d& along,
+                                              double reach_m) const {
+  const Eigen::Vector2d centre = grid_.center(cell.x(), cell.y());
+  if (reach_m <= 0.0 || along.squaredNorm() == 0.0) return centre;
+  const Eigen::Vector2d across = Eigen::Vector2d(-along.y(), along.x()).normalized();
+  double left_m = 0.0;
+  double right_m = 0.0;
+  if (!obstacle_ahead_m(centre, across, reach_m, left_m) || !obstacle_ahead_m(centre, -across, reach_m, right_m)) {
+    return centre;
+  }
+  const double half_cell = 0.5 * grid_.resolution_m;
+  return centre + std::clamp(0.5 * (left_m - right_m), -half_cell, half_cell) * across;
 }
 
 void NavigationMap::classify() {

@@ -27,7 +27,8 @@ PathPlanner::PathPlanner(const ExploreParams& params)
       heap_position_(new std::int32_t[capacity_]),
       seen_stamp_(new std::uint32_t[capacity_]()),
       closed_stamp_(new std::uint32_t[capacity_]()),
-      heap_(new std::int32_t[capacity_]) {}
+      heap_(new std::int32_t[capacity_]),
+      gap_centring_reach_m_(params.explore.gap_centring_reach_m) {}
 
 float PathPlanner::heuristic(std::int32_t cell) const {
   const int dx = std::abs(cell % width_ - goal_.x());
@@ -151,8 +152,17 @@ PlanResult PathPlanner::plan(const NavigationMap& map, const Eigen::Vector2i& st
     plan.cells[k] = Eigen::Vector2i(cell % width_, cell / width_);
     plan.waypoints[k] = grid.center(cell % width_, cell / width_);
   }
+  centre_in_gaps(map, plan);
   plan.cost = static_cast<double>(cost_[static_cast<std::size_t>(goal_cell)]);
   return PlanResult::found;
+}
+
+void PathPlanner::centre_in_gaps(const NavigationMap& map, Plan& plan) const {
+  const std::size_t count = plan.cells.size();
+  for (std::size_t k = 1; k + 1 < count; ++k) {
+    const Eigen::Vector2i along = plan.cells[k + 1] - plan.cells[k - 1];
+    plan.waypoints[k] = map.centred_in_gap(plan.cells[k], along.cast<double>(), gap_centring_reach_m_);
+  }
 }
 
 }  // namespace stereoscout::explore

@@ -202,6 +202,41 @@ TEST(PathPlanner, PlansLeadOutOfAnObstacleInsideTheRobotsDisc) {
   EXPECT_TRUE(map.passable(20, 10));
 }
 
+// A one-cell wall with a 0.9 m door whose jamb cells' centres lie 9 cells apart: two cells
+// are passable in the doorway, each 0.05 m off its middle, and the plan runs through one.
+// With gap centring the waypoint in the doorway is in its middle, and the waypoints where
+// only one side is near an obstacle stay at their cells' centres.
+TEST(PathPlanner, WaypointsInADoorwayAreMovedToItsMiddle) {
+  WalledRoom room;
+  auto& [params, map, planner, plan, grid] = room;
+  grid.fill(30, 0, 31, 15, CellState::occupied);
+  grid.fill(30, 23, 31, 40, CellState::occupied);  // free: y 15-22, the jambs' centres 0.9 m apart
+  const double middle_y = 0.1 * (14.5 + 23.5) / 2.0;
+  const Eigen::Vector2d robot(1.0, 2.0);
+  const auto doorway_waypoint = [&plan]() {
+    for (std::size_t k = 0; k < plan.cells.size(); ++k) {
+      if (plan.cells[k].x() == 30) return plan.waypoints[k];
+    }
+    return Eigen::Vector2d(-1.0, -1.0);
+  };
+  ASSERT_TRUE(map.rebuild(grid.view(), robot, robot));
+  ASSERT_EQ(planner.plan(map, {10, 19}, {50, 19}, plan), PlanResult::found);
+  EXPECT_NEAR(std::abs(doorway_waypoint().y() - middle_y), 0.05, 1e-9);  // off by default
+
+  params.explore.gap_centring_reach_m = 0.55;
+  PathPlanner centring(params);
+  ASSERT_EQ(centring.plan(map, {10, 19}, {50, 19}, plan), PlanResult::found);
+  EXPECT_NEAR(doorway_waypoint().y(), middle_y, 1e-9);
+  EXPECT_NEAR(doorway_waypoint().x(), 3.05, 1e-9);  // across the path only
+  for (std::size_t k = 0; k < plan.cells.size(); ++k) {
+    const Eigen::Vector2d centre = grid.view().center(plan.cells[k].x(), plan.cells[k].y());
+    EXPECT_LE((plan.waypoints[k] - centre).norm(), 0.05 + 1e-9);
+    if (std::abs(plan.cells[k].x() - 30) > 4) {
+      EXPECT_EQ(plan.waypoints[k], centre);  // no jamb in reach
+    }
+  }
+}
+
 TEST(PathPlanner, ReportsBlockedGoalsFullPlansAndNoPath) {
   WalledRoom room;
   auto& [params, map, planner, plan, grid] = room;

@@ -14,7 +14,9 @@
 
 namespace stereoscout::explore {
 
-// A path in the map frame: cell centres from the start cell to the goal cell.
+// A path in the map frame: cell centres from the start cell to the goal cell; with
+// explore.gap_centring_reach_m, a waypoint in a narrow gap lies up to half a cell from its
+// cell's centre, in the gap's middle.
 struct Plan {
   explicit Plan(std::size_t capacity) : cells(capacity), waypoints(capacity) {}
   void clear() {
@@ -46,6 +48,8 @@ class PathPlanner {
   void sift_up(std::size_t position);
   void sift_down(std::size_t position);
   float heuristic(std::int32_t cell) const;
+  // Moves the waypoints in narrow gaps to their middle (explore.gap_centring_reach_m).
+  void centre_in_gaps(const NavigationMap& map, Plan& plan) const;
 
   std::size_t capacity_;
   int width_ = 0;
@@ -61,6 +65,7 @@ class PathPlanner {
   std::size_t heap_size_ = 0;
   std::uint32_t stamp_ = 0;
   std::uint64_t expansions_ = 0;
+  double gap_centring_reach_m_;
 };
 
 }  // namespace stereoscout::explore

@@ -28,6 +28,7 @@ struct ExploreConfig {
   double preferred_clearance_m = 0.8;
   double obstacle_cost_weight = 4.0;
   int max_plan_waypoints = 8192;
+  double gap_centring_reach_m = 0.0;
   double lookahead_m = 0.35;
   double turn_in_place_deg = 25.0;
   double safety_check_distance_m = 0.5;
@@ -87,6 +88,7 @@ inline void describe(ConfigVisitor& v, ExploreConfig& c) {
   v.number("preferred_clearance_m", c.preferred_clearance_m, {0.0, 5.0, "m", "A* pays an obstacle penalty on cells closer than this to an occupied cell."});
   v.number("obstacle_cost_weight", c.obstacle_cost_weight, {0.0, 1000.0, "", "Extra A* cost per metre at the lethal distance, falling linearly to 0 at preferred_clearance_m."});
   v.integer_field("max_plan_waypoints", c.max_plan_waypoints, {2, 10000000, "cells", "Capacity of a plan; a longer path is a counted planning failure."});
+  v.number("gap_centring_reach_m", c.gap_centring_reach_m, {0.0, 5.0, "m", "A plan runs through cell centres: through a 0.9 m door spanning an even number of cells, 0.05 m off its middle, where the robot (0.7 m) has 0.1 m to spare on either side. Each waypoint (but the first and last) with an obstacle cell on both sides, across the plan and within this distance of its cell's centre, is moved to the middle between the two obstacle cells' centres, by at most half a cell, so it stays in its passable cell. At the lethal distance plus 1.5 cells (0.55 m on the default robot) it reaches the jambs of doors up to 1.1 m wide. 0 = off, the default: measured only on single runs so far (docs/results.md). Not in the paper."});
   v.number("lookahead_m", c.lookahead_m, {0.05, 5.0, "m", "Pure-pursuit lookahead distance of the path follower."});
   v.number("turn_in_place_deg", c.turn_in_place_deg, {1.0, 180.0, "deg", "The follower turns in place while the lookahead point is farther off the heading than this."});
   v.number("safety_check_distance_m", c.safety_check_distance_m, {0.05, 5.0, "m", "Before every command the next stretch of path this long is checked against occupied cells."});
