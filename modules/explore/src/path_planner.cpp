@@ -158,6 +158,7 @@ PlanResult PathPlanner::plan(const NavigationMap& map, const Eigen::Vector2i& st
 }
 
 void PathPlanner::centre_in_gaps(const NavigationMap& map, Plan& plan) const {
+  if (gap_centring_reach_m_ <= 0.0) return;  // off: the cells' centres, as set
   const std::size_t count = plan.cells.size();
   for (std::size_t k = 1; k + 1 < count; ++k) {
     const Eigen::Vector2i along = plan.cells[k + 1] - plan.cells[k - 1];
