@@ -9,9 +9,6 @@ namespace {
 
 constexpr double kNoSiteDistance_m = 1e9;
 constexpr double kDiagonal = 1.4142135623730951;
-// Step of the search for the obstacles either side of a gap, in cells: fine enough not to
-// step over a cell met corner-on.
-constexpr double kGapSearchStepCells = 0.25;
 
 int cells_for(double metres, double resolution_m) { return static_cast<int>(std::ceil(metres / resolution_m)) + 1; }
 
@@ -272,18 +269,34 @@ bool NavigationMap::obstacle_site(int x, int y) const {
   return state == CellState::unknown && params_.explore.unknown_clearance && !unknown_passable(x, y);
 }
 
-bool NavigationMap::obstacle_ahead_m(const Eigen::Vector2d& from, const Eigen::Vector2d& direction, double reach_m,
-                                     double& distance_m) const {
-  const double step = kGapSearchStepCells * grid_.resolution_m;
-  for (double along = step; along <= reach_m; along += step) {
-    const Eigen::Vector2i cell = grid_.cell_of(from + along * direction);
-    if (!window_.contains(cell.x(), cell.y())) return false;
-    if (obstacle_site(cell.x(), cell.y())) {
-      distance_m = (grid_.center(cell.x(), cell.y()) - from).dot(direction);
-      return true;
+bool NavigationMap::nearest_obstacles_aside(const Eigen::Vector2d& centre, const Eigen::Vector2d& across, double reach_m,
+                                            Eigen::Vector2d& left, Eigen::Vector2d& right) const {
+  const Eigen::Vector2i low = grid_.cell_of(centre - Eigen::Vector2d(reach_m, reach_m));
+  const Eigen::Vector2i high = grid_.cell_of(centre + Eigen::Vector2d(reach_m, reach_m));
+  double left2 = reach_m * reach_m;
+  double right2 = left2;
+  bool has_left = false;
+  bool has_right = false;
+  // A cell centre on the line through `centre` lies ahead or behind, not aside.
+  const double on_line_m = 1e-6;
+  for (int y = std::max(low.y(), window_.y0); y <= std::min(high.y(), window_.y1 - 1); ++y) {
+    for (int x = std::max(low.x(), window_.x0); x <= std::min(high.x(), window_.x1 - 1); ++x) {
+      if (!obstacle_site(x, y)) continue;
+      const Eigen::Vector2d site = grid_.center(x, y);
+      const double side = across.dot(site - centre);
+      const double distance2 = (site - centre).squaredNorm();
+      if (side > on_line_m && distance2 < left2) {
+        left = site;
+        left2 = distance2;
+        has_left = true;
+      } else if (side < -on_line_m && distance2 < right2) {
+        right = site;
+        right2 = distance2;
+        has_right = true;
+      }
     }
   }
-  return false;
+  return has_left && has_right;
 }
 
 Eigen::Vector2d NavigationMap::centred_in_gap(const Eigen::Vector2i& cell, const Eigen::Vector2d& along,
@@ -291,13 +304,14 @@ Eigen::Vector2d NavigationMap::centred_in_gap(const Eigen::Vector2i& cell, const
   const Eigen::Vector2d centre = grid_.center(cell.x(), cell.y());
   if (reach_m <= 0.0 || along.squaredNorm() == 0.0) return centre;
   const Eigen::Vector2d across = Eigen::Vector2d(-along.y(), along.x()).normalized();
-  double left_m = 0.0;
-  double right_m = 0.0;
-  if (!obstacle_ahead_m(centre, across, reach_m, left_m) || !obstacle_ahead_m(centre, -across, reach_m, right_m)) {
-    return centre;
-  }
+  Eigen::Vector2d left;
+  Eigen::Vector2d right;
+  if (!nearest_obstacles_aside(centre, across, reach_m, left, right)) return centre;
+  // The point centre + s across as far from `left` as from `right`: |c + s a - l|^2 =
+  // |c + s a - r|^2 gives s = (|c - r|^2 - |c - l|^2) / (2 a.(r - l)), and a.(r - l) < 0.
+  const double shift = ((centre - right).squaredNorm() - (centre - left).squaredNorm()) / (2.0 * across.dot(right - left));
   const double half_cell = 0.5 * grid_.resolution_m;
-  return centre + std::clamp(0.5 * (left_m - right_m), -half_cell, half_cell) * across;
+  return centre + std::clamp(shift, -half_cell, half_cell) * across;
 }
 
 void NavigationMap::classify() {

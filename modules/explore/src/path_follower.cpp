@@ -12,6 +12,21 @@ constexpr std::size_t kProgressWindow = 12;
 constexpr double kTurnGain = 2.0;
 }  // namespace
 
+// The first waypoint from the nearest one on that is at least `lookahead_m` away (the last
+// one when none is).
+std::size_t PathFollower::lookahead_point(const Plan& plan, const Eigen::Vector2d& position, double lookahead_m) const {
+  std::size_t target = progress_;
+  while (target + 1 < plan.waypoints.size() && (plan.waypoints[target] - position).norm() < lookahead_m) ++target;
+  return target;
+}
+
+bool PathFollower::narrow_ahead(const Plan& plan, std::size_t target) const {
+  for (std::size_t k = progress_; k <= target; ++k) {
+    if (plan.narrow[k]) return true;
+  }
+  return false;
+}
+
 FollowResult PathFollower::follow(const Plan& plan, const core::Pose2& pose) {
   FollowResult result;
   if (plan.empty()) {
@@ -36,8 +51,11 @@ FollowResult PathFollower::follow(const Plan& plan, const core::Pose2& pose) {
     result.reached = true;
     return result;
   }
-  std::size_t target = progress_;
-  while (target + 1 < count && (plan.waypoints[target] - position).norm() < params_.explore.lookahead_m) ++target;
+  std::size_t target = lookahead_point(plan, position, params_.explore.lookahead_m);
+  const double narrow_lookahead_m = params_.explore.narrow_lookahead_m;
+  if (narrow_lookahead_m > 0.0 && narrow_lookahead_m < params_.explore.lookahead_m && narrow_ahead(plan, target)) {
+    target = lookahead_point(plan, position, narrow_lookahead_m);
+  }
   const Eigen::Vector2d to_target = plan.waypoints[target] - position;
   const double alpha = core::wrap_angle(std::atan2(to_target.y(), to_target.x()) - pose.theta);
   const double max_turn = params_.max_turn_rate_rad_s;

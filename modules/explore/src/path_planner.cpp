@@ -145,12 +145,14 @@ PlanResult PathPlanner::plan(const NavigationMap& map, const Eigen::Vector2i& st
   for (std::size_t k = 0; k < length; ++k) {
     plan.cells.push_back(Eigen::Vector2i::Zero());
     plan.waypoints.push_back(Eigen::Vector2d::Zero());
+    plan.narrow.push_back(false);
   }
   std::size_t k = length;
   for (std::int32_t cell = goal_cell; cell >= 0; cell = parent_[static_cast<std::size_t>(cell)]) {
     --k;
     plan.cells[k] = Eigen::Vector2i(cell % width_, cell / width_);
     plan.waypoints[k] = grid.center(cell % width_, cell / width_);
+    plan.narrow[k] = map.traversability(cell % width_, cell / width_) != Traversability::safe;
   }
   centre_in_gaps(map, plan);
   plan.cost = static_cast<double>(cost_[static_cast<std::size_t>(goal_cell)]);

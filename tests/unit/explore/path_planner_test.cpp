@@ -204,8 +204,8 @@ TEST(PathPlanner, PlansLeadOutOfAnObstacleInsideTheRobotsDisc) {
 
 // A one-cell wall with a 0.9 m door whose jamb cells' centres lie 9 cells apart: two cells
 // are passable in the doorway, each 0.05 m off its middle, and the plan runs through one.
-// With gap centring the waypoint in the doorway is in its middle, and the waypoints where
-// only one side is near an obstacle stay at their cells' centres.
+// With gap centring the waypoints in the doorway and those before and after it with both
+// jambs in reach are in its middle, and the waypoints farther out stay at their cells' centres.
 TEST(PathPlanner, WaypointsInADoorwayAreMovedToItsMiddle) {
   WalledRoom room;
   auto& [params, map, planner, plan, grid] = room;
@@ -231,7 +231,10 @@ TEST(PathPlanner, WaypointsInADoorwayAreMovedToItsMiddle) {
   for (std::size_t k = 0; k < plan.cells.size(); ++k) {
     const Eigen::Vector2d centre = grid.view().center(plan.cells[k].x(), plan.cells[k].y());
     EXPECT_LE((plan.waypoints[k] - centre).norm(), 0.05 + 1e-9);
-    if (std::abs(plan.cells[k].x() - 30) > 4) {
+    const int from_wall = std::abs(plan.cells[k].x() - 30);
+    if (from_wall <= 2) {
+      EXPECT_NEAR(plan.waypoints[k].y(), middle_y, 1e-9) << "cell " << plan.cells[k].x();
+    } else if (from_wall > 4) {
       EXPECT_EQ(plan.waypoints[k], centre);  // no jamb in reach
     }
   }

@@ -74,9 +74,11 @@ class NavigationMap {
   // The passable cell nearest to `cell` within `radius_m` with no occupied cell on the straight
   // line between them (not across a wall; ties: the first in row order); false when there is none.
   bool nearest_passable(const Eigen::Vector2i& cell, double radius_m, Eigen::Vector2i& found) const;
-  // The point of passable `cell` midway, across a path of direction `along`, between the
-  // nearest obstacle cells' centres on either side within `reach_m` of the cell's centre,
-  // moved by at most half a cell; the cell's centre when either side has none.
+  // The point of passable `cell`, on the line across a path of direction `along`, as far from
+  // the nearest obstacle cell's centre on one side of the path as from the nearest on the other
+  // (both within `reach_m` of the cell's centre; not only straight across, so that the
+  // waypoints before and after a doorway in a thin wall are centred on its jambs too), moved
+  // by at most half a cell; the cell's centre when either side has none.
   Eigen::Vector2d centred_in_gap(const Eigen::Vector2i& cell, const Eigen::Vector2d& along, double reach_m) const;
   // Cost of moving between two 8-neighbours (metres times the obstacle and unknown penalties
   // of the cell entered); requires passable(to).
@@ -102,10 +104,11 @@ class NavigationMap {
   void distance_transform(std::int32_t* sites, IsSite&& is_site);
   bool unknown_passable(int x, int y) const;
   bool obstacle_site(int x, int y) const;
-  // Distance along `direction` (a unit vector) from `from` to the centre of the first obstacle
-  // cell met within reach_m; false when none is.
-  bool obstacle_ahead_m(const Eigen::Vector2d& from, const Eigen::Vector2d& direction, double reach_m,
-                        double& distance_m) const;
+  // The centres of the nearest obstacle cells within reach_m of `centre` on either side of a
+  // path through it (`across`: a unit vector across the path; left: across.(site - centre) > 0);
+  // false unless both sides have one.
+  bool nearest_obstacles_aside(const Eigen::Vector2d& centre, const Eigen::Vector2d& across, double reach_m,
+                               Eigen::Vector2d& left, Eigen::Vector2d& right) const;
   void classify();
   void open_way_out();
   bool open_trail_cell(const Eigen::Vector2d& position);

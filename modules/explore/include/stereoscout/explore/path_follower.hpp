@@ -4,7 +4,9 @@
 // than turn_in_place_deg off the heading it turns in place (A* paths have 45-degree corners
 // and a 0.12 m/s robot turning at 8 deg/s cannot bend tighter than 0.86 m, so cutting a
 // corner at speed would leave the planned corridor). When the curvature needs more than
-// the turn-rate limit, the speed drops so that the arc is kept.
+// the turn-rate limit, the speed drops so that the arc is kept. Where the path runs within
+// an obstacle's safety margin (Plan::narrow) up to the lookahead point, the lookahead shrinks
+// to explore.narrow_lookahead_m, so that the robot keeps to the path through a doorway.
 
 #include <cstddef>
 
@@ -29,6 +31,10 @@ class PathFollower {
   std::size_t progress() const { return progress_; }
 
  private:
+  std::size_t lookahead_point(const Plan& plan, const Eigen::Vector2d& position, double lookahead_m) const;
+  // A narrow waypoint from the nearest one up to `target`.
+  bool narrow_ahead(const Plan& plan, std::size_t target) const;
+
   ExploreParams params_;
   std::size_t progress_ = 0;
 };

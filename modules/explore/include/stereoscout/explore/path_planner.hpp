@@ -16,17 +16,21 @@ namespace stereoscout::explore {
 
 // A path in the map frame: cell centres from the start cell to the goal cell; with
 // explore.gap_centring_reach_m, a waypoint in a narrow gap lies up to half a cell from its
-// cell's centre, in the gap's middle.
+// cell's centre, in the gap's middle. `narrow` marks the waypoints whose cell lay within the
+// safety margin of an obstacle when the plan was made (a doorway, a gap between furniture):
+// there the follower keeps closer to the path (explore.narrow_lookahead_m).
 struct Plan {
-  explicit Plan(std::size_t capacity) : cells(capacity), waypoints(capacity) {}
+  explicit Plan(std::size_t capacity) : cells(capacity), waypoints(capacity), narrow(capacity) {}
   void clear() {
     cells.clear();
     waypoints.clear();
+    narrow.clear();
     cost = 0.0;
   }
   bool empty() const { return waypoints.empty(); }
   core::FixedVector<Eigen::Vector2i> cells;
   core::FixedVector<Eigen::Vector2d> waypoints;
+  core::FixedVector<bool> narrow;
   double cost = 0.0;  // sum of step costs (metres, penalised)
 };
 
