@@ -31,9 +31,11 @@ bool StallDetector::stalled(double time_s, const Eigen::Vector2d& position) {
   }
   commanded_m_ += last_linear_mps_ * std::max(0.0, time_s - last_time_s_);
   last_time_s_ = time_s;
-  if (time_s - window_start_s_ < window_s_) return false;
+  // A slow command (the follower's short lookahead in a doorway) stretches the window until it
+  // has commanded enough to judge: pushing on a jamb at 0.035 m/s is a stall too.
+  if (time_s - window_start_s_ < window_s_ || commanded_m_ < min_commanded_m_) return false;
   const double travelled = (position - window_start_position_).norm();
-  const bool stall = commanded_m_ >= min_commanded_m_ && travelled < progress_fraction_ * commanded_m_;
+  const bool stall = travelled < progress_fraction_ * commanded_m_;
   window_open_ = false;
   return stall;
 }

@@ -15,15 +15,16 @@ using testing::TestGrid;
 constexpr double kTick_s = 0.05;
 constexpr double kSpeed_mps = 0.12;
 
-// Drives for `duration_s` at kSpeed_mps, the pose advancing by `moved_fraction` of the command;
-// returns how many windows ended stalled.
-int drive(StallDetector& detector, double& time_s, Eigen::Vector2d& position, double duration_s, double moved_fraction) {
+// Drives for `duration_s` at `speed_mps`, the pose advancing by `moved_fraction` of the
+// command; returns how many windows ended stalled.
+int drive(StallDetector& detector, double& time_s, Eigen::Vector2d& position, double duration_s, double moved_fraction,
+          double speed_mps = kSpeed_mps) {
   int stalls = 0;
   for (const double end = time_s + duration_s; time_s < end - 1e-9;) {
     stalls += detector.stalled(time_s, position) ? 1 : 0;
-    detector.commanded(time_s, position, kSpeed_mps);
+    detector.commanded(time_s, position, speed_mps);
     time_s += kTick_s;
-    position.x() += moved_fraction * kSpeed_mps * kTick_s;
+    position.x() += moved_fraction * speed_mps * kTick_s;
   }
   return stalls;
 }
@@ -63,6 +64,22 @@ TEST(StallDetector, TurningInPlaceOrStandingIsNeverAStall) {
     EXPECT_FALSE(detector.stalled(time_s, position));
     detector.commanded(time_s, position, 0.001);
   }
+}
+
+// The follower's short lookahead in a doorway can command less than stall_min_commanded_m a
+// window: the window stretches until it has commanded that much, and then judges it.
+TEST(StallDetector, ASlowCommandAgainstSomethingStallsOnceEnoughWasCommanded) {
+  const core::ExploreConfig config;
+  StallDetector moving{config};
+  double time_s = 0.0;
+  Eigen::Vector2d position(1.0, 1.0);
+  EXPECT_EQ(drive(moving, time_s, position, 30.0, 1.0, 0.03), 0);
+  StallDetector blocked{config};
+  time_s = 0.0;
+  int stalls = 0;
+  while (stalls == 0 && time_s < 10.0) stalls = drive(blocked, time_s, position, kTick_s, 0.0, 0.03);
+  EXPECT_EQ(stalls, 1);
+  EXPECT_NEAR(time_s, config.stall_min_commanded_m / 0.03, 2.0 * kTick_s);
 }
 
 TEST(ContactMemory, MarksTheCellsBeyondTheRimAheadAndForgetsThemWhenSeenFree) {

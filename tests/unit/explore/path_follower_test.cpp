@@ -122,6 +122,7 @@ TEST(PathFollower, PassesADoorNearItsMiddle) {
 // open space the follower's command is the same with and without it.
 TEST(PathFollower, NarrowLookaheadActsOnlyNearObstacles) {
   ExploreParams params = test_params(60, 80);
+  params.explore.narrow_lookahead_m = 0.0;
   Doorway wide(params);
   params.explore.narrow_lookahead_m = 0.15;
   Doorway narrow(params);

@@ -9,9 +9,9 @@
 //
 // StallDetector compares, over windows of stall_window_s, the forward travel commanded with
 // the travel the pose shows (the stack's pose follows odometry between updates): stalled when
-// at least stall_min_commanded_m was commanded and less than stall_progress_fraction of it
-// was travelled. Any tick without a forward command starts a new window, so turns in place
-// and looks never count.
+// less than stall_progress_fraction of it was travelled. A window is judged once it has
+// commanded at least stall_min_commanded_m, so a slow command stretches it. Any tick without
+// a forward command starts a new window, so turns in place and looks never count.
 //
 // ContactMemory keeps contact cells in a fixed list. A contact is forgotten after
 // contact_hold_s, or as soon as the grid sees its cell free when it had held it unknown or
