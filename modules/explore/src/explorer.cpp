@@ -565,6 +565,11 @@ void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
     stop_and_look(input, output, 0.0);
     return;
   }
+  // A scan hold lasts until the scan that blocked is scan_guard_max_age_s old, whatever later
+  // scans show, and the robot does not even turn: a walker who came nearer than the matcher's
+  // range is in no later scan, and a turn in place brings an update (the lab, seed 1: a turn
+  // 0.1 s into a hold, an update without the walker, and the robot drove into them).
+  if (holding_for_scan_ && input.time_s < scan_hold_until_s_) return;
   // The current grid, with the contact cells when there are any (stamped at the last rebuild,
   // which follows every grid update).
   const GridView& grid = planning_on_copy_ ? planning_grid_ : input.grid;
@@ -609,6 +614,7 @@ bool Explorer::turn_to_face_plan(const GridView& grid, const ExploreInput& input
 // in: the lab, seed 2). A standing robot makes no update, so the hold ends when the scan is
 // scan_guard_max_age_s old; the next update, 0.07 m on, stops it again if they are still there.
 void Explorer::hold_for_scan(const ExploreInput& input) {
+  scan_hold_until_s_ = std::max(scan_hold_until_s_, input.seen.time_s + params_.explore.scan_guard_max_age_s);
   if (holding_for_scan_) return;
   holding_for_scan_ = true;
   ++counters_.scan_guard_stops;

@@ -305,11 +305,13 @@ struct ScanGuardResult {
   ExploreOutput output;
   ExploreCounters counters;
   ExploreEventKind last_event = ExploreEventKind::goal_chosen;
-  double drives_on_at_s = -1.0;  // the same scan, no update since: when forward motion resumed
+  double drives_on_at_s = -1.0;  // when it moved again (forward or turning)
   ExploreCounters counters_then;
 };
 
-ScanGuardResult drive_past_seen_person(const ScanGuardCase& scene_case) {
+// With `empty_scan_at_s` >= 0, a newer scan without the person arrives then (they came nearer
+// than the matcher sees).
+ScanGuardResult drive_past_seen_person(const ScanGuardCase& scene_case, double empty_scan_at_s = -1.0) {
   Corridor scene;
   ExploreParams params = no_look_params(100, 60);
   params.explore.scan_guard_min_points = scene_case.min_points;
@@ -340,7 +342,9 @@ ScanGuardResult drive_past_seen_person(const ScanGuardCase& scene_case) {
   result.last_event = explorer.journal()[explorer.journal().size() - 1].kind;
   for (double time = 0.1; time < 4.0 && result.drives_on_at_s < 0.0; time += 0.05) {
     input.time_s = time;
-    if (explorer.step(input).drive.linear_mps > 0.0) result.drives_on_at_s = time;
+    if (empty_scan_at_s >= 0.0 && time >= empty_scan_at_s - 1e-9) input.seen = SeenObstacles{person.data(), 0, empty_scan_at_s};
+    const core::DriveCommand drive = explorer.step(input).drive;
+    if (drive.linear_mps != 0.0 || drive.angular_rad_s != 0.0) result.drives_on_at_s = time;
   }
   result.counters_then = explorer.counters();
   return result;
@@ -364,6 +368,11 @@ TEST(Explorer, StopsForAPersonTheLatestScanSawBeforeTheGridHoldsThem) {
     EXPECT_EQ(seen.counters_then.scan_guard_stops, 1U);
     EXPECT_EQ(seen.counters_then.looks, 0U);
   }
+  // A newer scan 0.3 s into the hold no longer shows the person (nearer than the matcher
+  // sees): the hold still lasts until the scan that found them is 2 s old.
+  const ScanGuardResult too_near = drive_past_seen_person(ScanGuardCase{}, 0.3);
+  EXPECT_NEAR(too_near.drives_on_at_s, 2.05, 0.06);
+  EXPECT_EQ(too_near.counters_then.scan_guard_stops, 1U);
   // Fewer points than scan_guard_min_points (stray matches), an old scan, the guard off, or
   // a person beyond the checked stretch: it drives on.
   ScanGuardCase stray;

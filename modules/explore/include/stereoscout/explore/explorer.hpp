@@ -180,6 +180,7 @@ class Explorer {
   std::size_t trail_cells_opened_ = 0;  // by the last rebuild
   bool stalled_ = false;           // this tick
   bool holding_for_scan_ = false;  // standing still for what the scan guard saw
+  double scan_hold_until_s_ = 0.0;  // the last blocking scan's time + scan_guard_max_age_s
   PathPlanner planner_;
   PathFollower follower_;
   Plan plan_;
