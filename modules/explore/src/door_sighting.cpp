@@ -149,23 +149,25 @@ void DoorSighting::update_shift() {
   shift_.offset = std::clamp(mean, -std::min(most, to_right), std::min(most, to_left)) * throat_.across;
 }
 
-void DoorSighting::observe(const Plan& plan, std::size_t progress, const NavigationMap& map,
+bool DoorSighting::observe(const Plan& plan, std::size_t progress, const NavigationMap& map,
                            const SeenObstacles& seen, const core::Pose2& pose) {
   const Eigen::Vector2d robot(pose.x, pose.y);
   Throat throat;
   if (!next_throat(plan, progress, map, robot, throat)) {
     if (has_throat_ && (robot - throat_.position).norm() > params_.explore.door_sighting_far_m) reset();
-    return;
+    return false;
   }
   if (!has_throat_ || (throat.position - throat_.position).norm() > kSameThroat_m) start(throat, map.grid().resolution_m);
   const double distance = (robot - throat_.position).norm();
-  if (distance < params_.explore.door_sighting_near_m || distance > params_.explore.door_sighting_far_m) return;
+  if (distance < params_.explore.door_sighting_near_m || distance > params_.explore.door_sighting_far_m) return false;
   double offset = 0.0;
-  if (!sight(throat_, seen, pose, offset)) return;
+  if (!sight(throat_, seen, pose, offset)) return false;
+  const bool was_active = shift_.active;
   offset_sum_m_ += offset;
   ++offset_count_;
   ++sightings_;
   update_shift();
+  return shift_.active && !was_active;
 }
 
 }  // namespace stereoscout::explore

@@ -595,7 +595,7 @@ void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
 void Explorer::sight_door(const ExploreInput& input) {
   if (params_.explore.door_sighting_far_m <= 0.0 || input.seen.time_s == last_sighted_scan_s_) return;
   last_sighted_scan_s_ = input.seen.time_s;
-  door_sighting_.observe(plan_, follower_.progress(), map_, input.seen, input.pose);
+  if (door_sighting_.observe(plan_, follower_.progress(), map_, input.seen, input.pose)) note(ExploreEventKind::door_sighted, input);
   counters_.door_sightings = door_sighting_.sightings();
 }
 

@@ -51,8 +51,9 @@ class DoorSighting {
   explicit DoorSighting(const ExploreParams& params) : params_(params) {}
 
   void reset();
-  // With a scan newer than the last one observed; `progress` is the follower's.
-  void observe(const Plan& plan, std::size_t progress, const NavigationMap& map, const SeenObstacles& seen,
+  // With a scan newer than the last one observed; `progress` is the follower's. True when
+  // this scan made the shift active (once a throat).
+  bool observe(const Plan& plan, std::size_t progress, const NavigationMap& map, const SeenObstacles& seen,
                const core::Pose2& pose);
   const PassageShift& shift() const { return shift_; }
   std::uint64_t sightings() const { return sightings_; }
