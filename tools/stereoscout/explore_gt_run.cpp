@@ -73,10 +73,7 @@ ExploreGtResult run_explore_gt(const core::SystemConfig& config, const host_sim:
   core::DepthScan scan;
   scanner.allocate(scan);
   std::vector<Eigen::Vector2d> seen_points(static_cast<std::size_t>(config.camera.width_px));
-  std::vector<Eigen::Vector2d> seen_any_height(seen_points.size());
-  explore::SeenObstacles seen;
-  seen.points = seen_points.data();
-  seen.any_height = seen_any_height.data();
+  explore::SeenObstacles seen{seen_points.data(), 0, 0.0};
   cv::Mat left(config.camera.height_px, config.camera.width_px, CV_8UC1);
   cv::Mat right(config.camera.height_px, config.camera.width_px, CV_8UC1);
   cv::Mat depth(config.camera.height_px, config.camera.width_px, CV_32FC1);
@@ -116,10 +113,7 @@ ExploreGtResult run_explore_gt(const core::SystemConfig& config, const host_sim:
       disparity_from_depth(depth, focal_baseline, scan_params, disparity);
       scanner.compute(disparity, simulator.pan_rad(), simulator.time_ns(), scan);
       grid.insert(scan, pose);
-      seen.count = explore::seen_obstacles_from_scan(scan, pose, explore::ScanObstacles::at_camera_height,
-                                                     seen_points.data(), seen_points.size());
-      seen.any_height_count = explore::seen_obstacles_from_scan(scan, pose, explore::ScanObstacles::any_height,
-                                                                seen_any_height.data(), seen_any_height.size());
+      seen.count = explore::seen_obstacles_from_scan(scan, pose, seen_points.data(), seen_points.size());
       seen.time_s = simulator.time_s();
       occupancy::classify_cells(grid, thresholds, cells.data(), in_view.data());
       last_update_pose = pose;

@@ -16,7 +16,6 @@ const char* to_string(ExploreEventKind kind) {
     case ExploreEventKind::goal_blacklisted: return "goal_blacklisted";
     case ExploreEventKind::safety_stop: return "safety_stop";
     case ExploreEventKind::scan_stop: return "scan_stop";
-    case ExploreEventKind::door_sighted: return "door_sighted";
     case ExploreEventKind::stall: return "stall";
     case ExploreEventKind::look: return "look";
     case ExploreEventKind::contacts_cleared: return "contacts_cleared";

@@ -77,7 +77,6 @@ Explorer::Explorer(const ExploreParams& params)
       journal_(static_cast<std::size_t>(params.explore.event_memory)),
       planner_(params),
       follower_(params),
-      door_sighting_(params),
       plan_(static_cast<std::size_t>(params.explore.max_plan_waypoints)) {}
 
 Eigen::Vector2i Explorer::cell_of(const core::Pose2& pose) const { return map_.grid().cell_of(position_of(pose)); }
@@ -508,8 +507,7 @@ void Explorer::finish_look(const ExploreInput& input) {
 }
 
 void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
-  sight_door(input);
-  const FollowResult follow = follower_.follow(plan_, input.pose, door_sighting_.shift());
+  const FollowResult follow = follower_.follow(plan_, input.pose);
   if (follow.reached) {
     plan_.clear();
     if (state_ == ExploreState::returning) {
@@ -589,14 +587,6 @@ void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
     return;
   }
   output.drive = follow.command;
-}
-
-// Each new scan, once: a sighting of the next door's jambs when the robot is in range of it.
-void Explorer::sight_door(const ExploreInput& input) {
-  if (params_.explore.door_sighting_far_m <= 0.0 || input.seen.time_s == last_sighted_scan_s_) return;
-  last_sighted_scan_s_ = input.seen.time_s;
-  if (door_sighting_.observe(plan_, follower_.progress(), map_, input.seen, input.pose)) note(ExploreEventKind::door_sighted, input);
-  counters_.door_sightings = door_sighting_.sightings();
 }
 
 // Pure pursuit cuts the plan's corners; beside an obstacle the cut can touch it where the plan

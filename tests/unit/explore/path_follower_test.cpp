@@ -1,14 +1,10 @@
 // The follower driving a kinematic robot (the simulator's model: no acceleration limit) along
-// planned paths through a doorway, and door sighting (door_sighting.hpp) steering it there
-// when the pose it steers by is off.
+// planned paths through a doorway.
 #include <algorithm>
-#include <cstdio>
 #include <cmath>
-#include <vector>
 
 #include <gtest/gtest.h>
 
-#include "stereoscout/explore/door_sighting.hpp"
 #include "stereoscout/explore/path_follower.hpp"
 #include "stereoscout/explore/path_planner.hpp"
 #include "test_grid.hpp"
@@ -52,57 +48,26 @@ struct Passage {
   double clearance_m = 1e9;
 };
 
-// What the scan sees of the door's wall from `truth` (its base on either face, every 0.02 m
-// out to 1.5 m beyond each jamb, within the camera's field of view and between the matcher's
-// 0.73 m and 3 m), placed in the map with the pose the robot steers by: truth + `pose_error`.
-std::vector<Eigen::Vector2d> scan_of_wall(const core::Pose2& truth, const Eigen::Vector2d& pose_error,
-                                          double half_fov_rad) {
-  std::vector<Eigen::Vector2d> points;
-  for (double face_y : {kWallY - 0.05, kWallY + 0.05}) {
-    for (double beyond = 0.0; beyond <= 1.5; beyond += 0.02) {
-      for (double side : {-1.0, 1.0}) {
-        const Eigen::Vector2d point(kMiddleX + side * (kJambHalfSpan + beyond), face_y);
-        const Eigen::Vector2d from_robot = point - Eigen::Vector2d(truth.x, truth.y);
-        const double bearing = core::wrap_angle(std::atan2(from_robot.y(), from_robot.x()) - truth.theta);
-        if (std::abs(bearing) > half_fov_rad || from_robot.norm() < 0.73 || from_robot.norm() > 3.0) continue;
-        points.push_back(point + pose_error);
-      }
-    }
-  }
-  return points;
-}
-
 // Drives from `start` to `goal` at the drive task's 20 Hz, planning every 0.5 s from the
-// robot's cell as the explorer does, steering by the true pose plus `pose_error`; with
-// door_sighting_far_m set, a scan of the wall comes with every plan.
-Passage drive_through(Doorway& door, const core::Pose2& start, const Eigen::Vector2d& goal,
-                      const Eigen::Vector2d& pose_error = Eigen::Vector2d::Zero()) {
+// robot's cell as the explorer does.
+Passage drive_through(Doorway& door, const core::Pose2& start, const Eigen::Vector2d& goal) {
   const GridView grid = door.grid.view();
   const Eigen::Vector2d origin(start.x, start.y);
   EXPECT_TRUE(door.map.rebuild(grid, origin, origin));
   PathFollower follower(door.params);
-  DoorSighting sighting(door.params);
   core::Pose2 pose = start;
   Passage passage;
   const double dt = 0.05;
   const double replan_s = 0.5;
   double next_plan_s = 0.0;
   for (double t = 0.0; t < 200.0; t += dt) {
-    const core::Pose2 steered{pose.x + pose_error.x(), pose.y + pose_error.y(), pose.theta};
     if (t >= next_plan_s) {
-      const Eigen::Vector2i cell = grid.cell_of({steered.x, steered.y});
+      const Eigen::Vector2i cell = grid.cell_of({pose.x, pose.y});
       if (door.planner.plan(door.map, cell, grid.cell_of(goal), door.plan) != PlanResult::found) return passage;
       follower.reset();
       next_plan_s = t + replan_s;
-      if (door.params.explore.door_sighting_far_m > 0.0) {
-        const std::vector<Eigen::Vector2d> wall = scan_of_wall(pose, pose_error, door.params.camera_half_fov_rad);
-        SeenObstacles seen;
-        seen.any_height = wall.data();
-        seen.any_height_count = wall.size();
-        sighting.observe(door.plan, follower.progress(), door.map, seen, steered);
-      }
     }
-    const FollowResult result = follower.follow(door.plan, steered, sighting.shift());
+    const FollowResult result = follower.follow(door.plan, pose);
     if (result.reached) {
       passage.reached = true;
       return passage;
@@ -119,7 +84,7 @@ Passage drive_through(Doorway& door, const core::Pose2& start, const Eigen::Vect
 
 // Least jamb clearance over approaches from the corridor (eight starts, three headings) to
 // goals in the room straight ahead, beside the door and diagonally beyond it.
-double least_clearance_m(const ExploreParams& params, const Eigen::Vector2d& pose_error = Eigen::Vector2d::Zero()) {
+double least_clearance_m(const ExploreParams& params) {
   const double starts_x[] = {0.6, 1.0, 1.5, 2.0, 2.5, 3.0, 3.5, 4.5};
   const double headings[] = {0.0, core::kPi, -core::kPi / 2.0};
   const Eigen::Vector2d goals[] = {{2.0, 2.5}, {3.5, 2.8}, {0.8, 3.0}, {4.5, 1.5}};
@@ -128,7 +93,7 @@ double least_clearance_m(const ExploreParams& params, const Eigen::Vector2d& pos
     for (double heading : headings) {
       for (const Eigen::Vector2d& goal : goals) {
         Doorway door(params);
-        const Passage passage = drive_through(door, core::Pose2{x, 5.1, heading}, goal, pose_error);
+        const Passage passage = drive_through(door, core::Pose2{x, 5.1, heading}, goal);
         EXPECT_TRUE(passage.reached) << "from x " << x << " heading " << heading << " to " << goal.transpose();
         least = std::min(least, passage.clearance_m);
       }
@@ -183,70 +148,6 @@ TEST(PathFollower, NarrowLookaheadActsOnlyNearObstacles) {
   const FollowResult far = PathFollower(wide.params).follow(wide.plan, before_door);
   const FollowResult near = PathFollower(narrow.params).follow(narrow.plan, before_door);
   EXPECT_GT(std::abs(near.command.angular_rad_s), std::abs(far.command.angular_rad_s));
-}
-
-// The pose the robot steers by 0.12 m off along the wall (as on the office's seed 5): without
-// door sighting the disc runs into a jamb; with it, the scans' view of the jambs moves the
-// robot back towards the door's middle, as far as the grid's jamb cells let the safety check
-// pass (0.09 m here). With the pose right, it changes nothing that matters.
-TEST(PathFollower, PassesADoorWithThePoseOffWhenItSightsTheJambs) {
-  ExploreParams params = test_params(60, 80);
-  for (double error_x : {0.12, -0.12}) {
-    params.explore.door_sighting_far_m = 0.0;
-    const double blind = least_clearance_m(params, {error_x, 0.0});
-    params.explore.door_sighting_far_m = 1.6;
-    const double sighted = least_clearance_m(params, {error_x, 0.0});
-    std::printf("pose %+.2f m off: least clearance %.3f m blind, %.3f m sighted\n", error_x, blind, sighted);
-    EXPECT_LT(blind, 0.0) << error_x;
-    EXPECT_GT(sighted, 0.035) << error_x;
-  }
-  const double right = least_clearance_m(params);
-  std::printf("pose right: least clearance %.3f m sighted\n", right);
-  EXPECT_GT(right, 0.085);
-}
-
-// One sighting is not enough; two of the jambs 0.12 m off move the target by as much as the
-// grid's jamb cells leave the disc (0.09 m), near the door only. A person standing in the door
-// is no jamb, and a throat the robot has left behind is forgotten.
-TEST(DoorSighting, MovesTheTargetOnlyForJambsSeenTwice) {
-  ExploreParams params = test_params(60, 80);
-  params.explore.door_sighting_far_m = 1.6;
-  Doorway door(params);
-  const core::Pose2 pose{2.0, 5.3, -core::kPi / 2.0};
-  ASSERT_TRUE(door.map.rebuild(door.grid.view(), {pose.x, pose.y}, {pose.x, pose.y}));
-  ASSERT_EQ(door.planner.plan(door.map, {20, 53}, {20, 25}, door.plan), PlanResult::found);
-  DoorSighting sighting(params);
-  DoorSighting::Throat throat;
-  ASSERT_TRUE(sighting.next_throat(door.plan, 0, door.map, {pose.x, pose.y}, throat));
-  EXPECT_NEAR(throat.position.x(), kMiddleX, 1e-9);
-  EXPECT_NEAR(throat.position.y(), kWallY, 1e-9);
-
-  std::vector<Eigen::Vector2d> person;
-  for (double x = 1.85; x <= 2.15; x += 0.02) person.emplace_back(x, kWallY);
-  SeenObstacles seen;
-  seen.any_height = person.data();
-  seen.any_height_count = person.size();
-  sighting.observe(door.plan, 0, door.map, seen, pose);
-  EXPECT_EQ(sighting.sightings(), 0U);
-
-  const std::vector<Eigen::Vector2d> wall = scan_of_wall(pose, {0.12, 0.0}, params.camera_half_fov_rad);
-  seen.any_height = wall.data();
-  seen.any_height_count = wall.size();
-  sighting.observe(door.plan, 0, door.map, seen, pose);
-  EXPECT_EQ(sighting.sightings(), 1U);
-  EXPECT_FALSE(sighting.shift().active);
-  sighting.observe(door.plan, 0, door.map, seen, pose);
-  ASSERT_TRUE(sighting.shift().active);
-  EXPECT_NEAR(sighting.shift().at(throat.position).x(), 0.09, 1e-6);
-  EXPECT_NEAR(sighting.shift().at(throat.position).y(), 0.0, 1e-6);
-  EXPECT_EQ(sighting.shift().at({2.0, 5.3}), Eigen::Vector2d::Zero());
-
-  // In the room, 2 m on, with a plan that stays there.
-  const core::Pose2 in_room{2.0, 2.0, -core::kPi / 2.0};
-  ASSERT_TRUE(door.map.rebuild(door.grid.view(), {in_room.x, in_room.y}, {in_room.x, in_room.y}));
-  ASSERT_EQ(door.planner.plan(door.map, {20, 20}, {30, 20}, door.plan), PlanResult::found);
-  sighting.observe(door.plan, 0, door.map, seen, in_room);
-  EXPECT_FALSE(sighting.shift().active);
 }
 
 }  // namespace

@@ -95,7 +95,6 @@ Stack::Stack(const core::SystemConfig& config, const StackOptions& options, cons
       observations_(static_cast<std::size_t>(config.vision.max_features)),
       live_nodes_(static_cast<std::size_t>(filter_config_for(config.filter, options.localization).particle_capacity)),
       seen_obstacles_(static_cast<std::size_t>(config.camera.width_px)),
-      seen_any_height_(static_cast<std::size_t>(config.camera.width_px)),
       odometry_history_(kOdometryHistory),
       update_records_(records_for(options.max_time_s, config.budgets.tasks[3].rate_hz)),
       odometry_path_(records_for(options.max_time_s, config.robot.odometry_rate_hz)),
@@ -381,15 +380,11 @@ core::Status Stack::observation_update() {
   return core::Status::success();
 }
 
-// The scan's obstacles, placed with the pose the grid uses for this scan: those at the
-// camera's height for the explorer's safety check, all for door sighting (explore::SeenObstacles).
+// The scan's obstacles at the camera's height, placed with the pose the grid uses for this
+// scan, for the explorer's safety check (explore::SeenObstacles).
 void Stack::keep_seen_obstacles(std::int64_t frame_ns) {
   seen_.points = seen_obstacles_.data();
-  seen_.count = explore::seen_obstacles_from_scan(scan_, pose_at_update_, explore::ScanObstacles::at_camera_height,
-                                                  seen_obstacles_.data(), seen_obstacles_.size());
-  seen_.any_height = seen_any_height_.data();
-  seen_.any_height_count = explore::seen_obstacles_from_scan(scan_, pose_at_update_, explore::ScanObstacles::any_height,
-                                                             seen_any_height_.data(), seen_any_height_.size());
+  seen_.count = explore::seen_obstacles_from_scan(scan_, pose_at_update_, seen_obstacles_.data(), seen_obstacles_.size());
   seen_.time_s = static_cast<double>(frame_ns - start_ns_) * 1e-9;
 }
 

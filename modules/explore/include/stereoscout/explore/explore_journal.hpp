@@ -32,7 +32,6 @@ enum class ExploreEventKind : std::uint8_t {
   goal_blacklisted,  // ... for good: it failed goal_failures_before_blacklist times
   safety_stop,       // the next stretch would touch an occupied cell
   scan_stop,         // ... the grid clear, but the latest scan saw an obstacle there (scan_guard_min_points)
-  door_sighted,      // the scans' view of the next door's jambs begins to move the follower (door_sighting_far_m)
   stall,             // forward motion commanded, none made: a contact
   look,              // a 360-degree look begins
   contacts_cleared,  // before concluding "explored" or "no way back"

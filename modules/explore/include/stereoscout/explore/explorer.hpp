@@ -24,8 +24,6 @@
 // while within scan_guard_distance_m along the plan or its heading it would touch that many
 // of the obstacles the latest scan saw at the camera's height (a person walking in, whom the
 // grid holds only some updates later).
-// With door_sighting_far_m, where the latest scans see the next door's jambs against where the
-// grid holds them moves the follower's target in the door (door_sighting.hpp).
 // If facing the plan's next waypoint would clear the way (pure pursuit cut a corner beside an
 // obstacle), it turns in place to face it instead. Otherwise, with pan_at_goal, it looks around
 // (a standing robot makes no observation update, so nothing would clear a person's trace)
@@ -40,7 +38,6 @@
 #include "stereoscout/core/geometry.hpp"
 #include "stereoscout/core/messages.hpp"
 #include "stereoscout/explore/contact_memory.hpp"
-#include "stereoscout/explore/door_sighting.hpp"
 #include "stereoscout/explore/explore_journal.hpp"
 #include "stereoscout/explore/goal_value.hpp"
 #include "stereoscout/explore/grid_view.hpp"
@@ -103,7 +100,6 @@ struct ExploreCounters {
   std::uint64_t plans_kept_for_walkers = 0;  // blocked only by passers-by: kept (wait_for_walkers)
   std::uint64_t walker_waits_ended = 0;      // a goal's walker_wait_per_goal_s used up: replanned as without it
   std::uint64_t traces_seen_standing = 0;  // cells seen occupied in view for trace_view_updates: never traces
-  std::uint64_t door_sightings = 0;  // scans that measured the next door's jambs (door_sighting_far_m)
 };
 
 class Explorer {
@@ -152,7 +148,6 @@ class Explorer {
   void finish_look(const ExploreInput& input);
   void look_step(const ExploreInput& input, ExploreOutput& output);
   void drive_step(const ExploreInput& input, ExploreOutput& output);
-  void sight_door(const ExploreInput& input);
   void stop_and_look(const ExploreInput& input, ExploreOutput& output, double turn_rad_s);
   void hold_for_scan(const ExploreInput& input);
   bool back_off_step(const ExploreInput& input, ExploreOutput& output);
@@ -188,8 +183,6 @@ class Explorer {
   double scan_hold_until_s_ = 0.0;  // the last blocking scan's time + scan_guard_max_age_s
   PathPlanner planner_;
   PathFollower follower_;
-  DoorSighting door_sighting_;
-  double last_sighted_scan_s_ = -1.0;  // the scan door sighting observed last
   Plan plan_;
   Goal goal_;
   ExploreCounters counters_;

@@ -7,13 +7,11 @@
 // the turn-rate limit, the speed drops so that the arc is kept. Where the path runs within
 // an obstacle's safety margin (Plan::narrow) up to the lookahead point, the lookahead shrinks
 // to explore.narrow_lookahead_m, so that the robot keeps to the path through a doorway.
-// A narrow target near a sighted door moves by the door sighting's shift (door_sighting.hpp).
 
 #include <cstddef>
 
 #include "stereoscout/core/geometry.hpp"
 #include "stereoscout/core/messages.hpp"
-#include "stereoscout/explore/door_sighting.hpp"
 #include "stereoscout/explore/grid_view.hpp"
 #include "stereoscout/explore/path_planner.hpp"
 
@@ -29,7 +27,7 @@ class PathFollower {
  public:
   explicit PathFollower(const ExploreParams& params) : params_(params) {}
   void reset() { progress_ = 0; }
-  FollowResult follow(const Plan& plan, const core::Pose2& pose, const PassageShift& shift = PassageShift());
+  FollowResult follow(const Plan& plan, const core::Pose2& pose);
   std::size_t progress() const { return progress_; }
 
  private:

@@ -3,7 +3,6 @@
 // check (explore.scan_guard_min_points).
 
 #include <cstddef>
-#include <cstdint>
 
 #include <Eigen/Core>
 
@@ -18,24 +17,17 @@ namespace stereoscout::explore {
 // robot for them as well as stopping it for the grid's occupied cells: the grid turns a cell
 // it saw free many times occupied only after several updates (log-odds clamped at -4, +0.85 a
 // hit), and a walking person covers 1-2 m meanwhile.
-// Door sighting (explore.door_sighting_far_m) uses every obstacle column, whatever its height:
-// the office's blank walls are seen by their base only.
-// Must stay valid during the call only; counts 0 when there is no scan.
+// Must stay valid during the call only; count 0 when there is no scan.
 struct SeenObstacles {
-  const Eigen::Vector2d* points = nullptr;  // at the camera's height
+  const Eigen::Vector2d* points = nullptr;
   std::size_t count = 0;
-  const Eigen::Vector2d* any_height = nullptr;  // every obstacle column
-  std::size_t any_height_count = 0;
   double time_s = 0.0;  // when the scan's stereo pair was captured
 };
 
-enum class ScanObstacles : std::uint8_t { at_camera_height, any_height };
-
-// Writes into `points` (room for `capacity`) the scan's obstacle columns (those that stand at
-// the camera's height, or all), in the map frame of `pose` (the robot's pose at the scan's
-// capture); returns how many. The columns are in the robot frame on the floor plane
-// (core::DepthScan).
-std::size_t seen_obstacles_from_scan(const core::DepthScan& scan, const core::Pose2& pose, ScanObstacles which,
-                                     Eigen::Vector2d* points, std::size_t capacity);
+// Writes into `points` (room for `capacity`) the scan's obstacle columns that stand at the
+// camera's height, in the map frame of `pose` (the robot's pose at the scan's capture); returns
+// how many. The columns are in the robot frame on the floor plane (core::DepthScan).
+std::size_t seen_obstacles_from_scan(const core::DepthScan& scan, const core::Pose2& pose, Eigen::Vector2d* points,
+                                     std::size_t capacity);
 
 }  // namespace stereoscout::explore

@@ -206,7 +206,6 @@ class Stack {
   core::FixedVector<slam::TrajectoryNodeHandle> live_nodes_;
   core::DepthScan scan_;
   std::vector<Eigen::Vector2d> seen_obstacles_;  // sized once: the last scan's obstacles at camera height, map frame
-  std::vector<Eigen::Vector2d> seen_any_height_;  // sized once: all of its obstacles, map frame
   explore::SeenObstacles seen_;                    // the used part of it
   std::vector<occupancy::CellState> cells_;  // the ML grid classified, the explorer's view
   std::vector<std::uint8_t> in_view_;        // the ML grid's in-view marks, same layout
