@@ -77,6 +77,7 @@ Explorer::Explorer(const ExploreParams& params)
       journal_(static_cast<std::size_t>(params.explore.event_memory)),
       planner_(params),
       follower_(params),
+      door_axis_(params),
       plan_(static_cast<std::size_t>(params.explore.max_plan_waypoints)) {}
 
 Eigen::Vector2i Explorer::cell_of(const core::Pose2& pose) const { return map_.grid().cell_of(position_of(pose)); }
@@ -507,7 +508,10 @@ void Explorer::finish_look(const ExploreInput& input) {
 }
 
 void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
-  const FollowResult follow = follower_.follow(plan_, input.pose);
+  if (params_.explore.door_axis_before_m > 0.0) {
+    door_axis_.update(plan_, follower_.progress(), map_, position_of(input.pose));
+  }
+  const FollowResult follow = follower_.follow(plan_, input.pose, door_axis_.passage());
   if (follow.reached) {
     plan_.clear();
     if (state_ == ExploreState::returning) {

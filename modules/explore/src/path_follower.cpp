@@ -27,7 +27,7 @@ bool PathFollower::narrow_ahead(const Plan& plan, std::size_t target) const {
   return false;
 }
 
-FollowResult PathFollower::follow(const Plan& plan, const core::Pose2& pose) {
+FollowResult PathFollower::follow(const Plan& plan, const core::Pose2& pose, const DoorPassage& door) {
   FollowResult result;
   if (plan.empty()) {
     result.reached = true;
@@ -56,7 +56,10 @@ FollowResult PathFollower::follow(const Plan& plan, const core::Pose2& pose) {
   if (narrow_lookahead_m > 0.0 && narrow_lookahead_m < params_.explore.lookahead_m && narrow_ahead(plan, target)) {
     target = lookahead_point(plan, position, narrow_lookahead_m);
   }
-  const Eigen::Vector2d to_target = plan.waypoints[target] - position;
+  Eigen::Vector2d target_point = plan.waypoints[target];
+  const double axis_lookahead_m = narrow_lookahead_m > 0.0 ? narrow_lookahead_m : params_.explore.lookahead_m;
+  door.axis_target(position, axis_lookahead_m, params_.explore.door_axis_before_m, target_point);
+  const Eigen::Vector2d to_target = target_point - position;
   const double alpha = core::wrap_angle(std::atan2(to_target.y(), to_target.x()) - pose.theta);
   const double max_turn = params_.max_turn_rate_rad_s;
   if (std::abs(alpha) > core::degrees_to_radians(params_.explore.turn_in_place_deg)) {

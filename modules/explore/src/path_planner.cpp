@@ -28,7 +28,8 @@ PathPlanner::PathPlanner(const ExploreParams& params)
       seen_stamp_(new std::uint32_t[capacity_]()),
       closed_stamp_(new std::uint32_t[capacity_]()),
       heap_(new std::int32_t[capacity_]),
-      gap_centring_reach_m_(params.explore.gap_centring_reach_m) {}
+      gap_centring_reach_m_(params.explore.gap_centring_reach_m),
+      narrow_clearance_m_(params.explore.narrow_clearance_m) {}
 
 float PathPlanner::heuristic(std::int32_t cell) const {
   const int dx = std::abs(cell % width_ - goal_.x());
@@ -152,11 +153,16 @@ PlanResult PathPlanner::plan(const NavigationMap& map, const Eigen::Vector2i& st
     --k;
     plan.cells[k] = Eigen::Vector2i(cell % width_, cell / width_);
     plan.waypoints[k] = grid.center(cell % width_, cell / width_);
-    plan.narrow[k] = map.traversability(cell % width_, cell / width_) != Traversability::safe;
+    plan.narrow[k] = narrow(map, cell % width_, cell / width_);
   }
   centre_in_gaps(map, plan);
   plan.cost = static_cast<double>(cost_[static_cast<std::size_t>(goal_cell)]);
   return PlanResult::found;
+}
+
+// Within the safety margin of an obstacle, or nearer than narrow_clearance_m to one.
+bool PathPlanner::narrow(const NavigationMap& map, int x, int y) const {
+  return map.traversability(x, y) != Traversability::safe || map.occupied_distance_m(x, y) < narrow_clearance_m_;
 }
 
 void PathPlanner::centre_in_gaps(const NavigationMap& map, Plan& plan) const {

@@ -1,10 +1,12 @@
 // The follower driving a kinematic robot (the simulator's model: no acceleration limit) along
-// planned paths through a doorway.
+// planned paths through a doorway, and the door's axis (door_axis.hpp) it may steer along there.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include <gtest/gtest.h>
 
+#include "stereoscout/explore/door_axis.hpp"
 #include "stereoscout/explore/path_follower.hpp"
 #include "stereoscout/explore/path_planner.hpp"
 #include "test_grid.hpp"
@@ -22,11 +24,14 @@ constexpr double kMiddleX = 2.0;
 constexpr double kWallY = 4.05;
 constexpr double kJambHalfSpan = 0.45;
 
+// With `jamb_cells_free`, the cells the jambs' edges lie in are free: the grid holds the door
+// 1.1 m wide, and it has four passable cells, the outer two 0.15 m off its middle.
 struct Doorway {
-  explicit Doorway(const ExploreParams& p) : params(p) {
+  explicit Doorway(const ExploreParams& p, bool jamb_cells_free = false) : params(p) {
+    const int free_cells = jamb_cells_free ? 1 : 0;
     grid.walls();
-    grid.fill(0, 40, 16, 41, CellState::occupied);
-    grid.fill(24, 40, 60, 41, CellState::occupied);
+    grid.fill(0, 40, 16 - free_cells, 41, CellState::occupied);
+    grid.fill(24 + free_cells, 40, 60, 41, CellState::occupied);
   }
   ExploreParams params;
   NavigationMap map{params};
@@ -55,6 +60,7 @@ Passage drive_through(Doorway& door, const core::Pose2& start, const Eigen::Vect
   const Eigen::Vector2d origin(start.x, start.y);
   EXPECT_TRUE(door.map.rebuild(grid, origin, origin));
   PathFollower follower(door.params);
+  DoorAxis axis(door.params);
   core::Pose2 pose = start;
   Passage passage;
   const double dt = 0.05;
@@ -67,7 +73,8 @@ Passage drive_through(Doorway& door, const core::Pose2& start, const Eigen::Vect
       follower.reset();
       next_plan_s = t + replan_s;
     }
-    const FollowResult result = follower.follow(door.plan, pose);
+    if (door.params.explore.door_axis_before_m > 0.0) axis.update(door.plan, follower.progress(), door.map, {pose.x, pose.y});
+    const FollowResult result = follower.follow(door.plan, pose, axis.passage());
     if (result.reached) {
       passage.reached = true;
       return passage;
@@ -84,7 +91,7 @@ Passage drive_through(Doorway& door, const core::Pose2& start, const Eigen::Vect
 
 // Least jamb clearance over approaches from the corridor (eight starts, three headings) to
 // goals in the room straight ahead, beside the door and diagonally beyond it.
-double least_clearance_m(const ExploreParams& params) {
+double least_clearance_m(const ExploreParams& params, bool jamb_cells_free = false) {
   const double starts_x[] = {0.6, 1.0, 1.5, 2.0, 2.5, 3.0, 3.5, 4.5};
   const double headings[] = {0.0, core::kPi, -core::kPi / 2.0};
   const Eigen::Vector2d goals[] = {{2.0, 2.5}, {3.5, 2.8}, {0.8, 3.0}, {4.5, 1.5}};
@@ -92,7 +99,7 @@ double least_clearance_m(const ExploreParams& params) {
   for (double x : starts_x) {
     for (double heading : headings) {
       for (const Eigen::Vector2d& goal : goals) {
-        Doorway door(params);
+        Doorway door(params, jamb_cells_free);
         const Passage passage = drive_through(door, core::Pose2{x, 5.1, heading}, goal);
         EXPECT_TRUE(passage.reached) << "from x " << x << " heading " << heading << " to " << goal.transpose();
         least = std::min(least, passage.clearance_m);
@@ -148,6 +155,66 @@ TEST(PathFollower, NarrowLookaheadActsOnlyNearObstacles) {
   const FollowResult far = PathFollower(wide.params).follow(wide.plan, before_door);
   const FollowResult near = PathFollower(narrow.params).follow(narrow.plan, before_door);
   EXPECT_GT(std::abs(near.command.angular_rad_s), std::abs(far.command.angular_rad_s));
+}
+
+// The grid often holds a 0.9 m door a cell wider on either side (the cells its jambs' edges
+// lie in seen free): no waypoint in it is within the safety margin, so the follower keeps its
+// long lookahead and cuts the turn into the door, and the plan may pass 0.15 m off its
+// middle. Calling waypoints within 0.6 m of an obstacle narrow and steering along the door's
+// axis leave the disc nearly its 0.10 m in either grid.
+TEST(PathFollower, PassesADoorTheGridHoldsWiderAlongItsAxis) {
+  ExploreParams params = test_params(60, 80);
+  const double wider = least_clearance_m(params, true);
+  EXPECT_LT(wider, 0.05);
+  params.explore.narrow_clearance_m = 0.6;
+  params.explore.door_axis_before_m = 0.6;
+  const double wider_on_axis = least_clearance_m(params, true);
+  const double on_axis = least_clearance_m(params);
+  std::printf("least jamb clearance: %.3f m in the wider grid, %.3f m along the axis (%.3f m in the exact grid)\n",
+              wider, wider_on_axis, on_axis);
+  EXPECT_GT(wider_on_axis, 0.09);
+  EXPECT_GT(on_axis, 0.09);
+}
+
+// The door is found where the plan's narrow stretch is narrowest, its middle between the grid's
+// jamb cells in either grid, its axis the way the plan passes. A door ahead that a new plan
+// no longer passes is dropped; one the robot is passing is kept until the disc has cleared it.
+TEST(DoorAxis, FindsTheDoorOnThePlanAndKeepsItWhilePassing) {
+  ExploreParams params = test_params(60, 80);
+  params.explore.narrow_clearance_m = 0.6;
+  params.explore.door_axis_before_m = 0.6;
+  for (bool jamb_cells_free : {false, true}) {
+    Doorway door(params, jamb_cells_free);
+    const Eigen::Vector2d robot(1.5, 4.9);
+    ASSERT_TRUE(door.map.rebuild(door.grid.view(), robot, robot));
+    ASSERT_EQ(door.planner.plan(door.map, {15, 49}, {25, 25}, door.plan), PlanResult::found);
+    DoorAxis axis(params);
+    axis.update(door.plan, 0, door.map, robot);
+    ASSERT_TRUE(axis.passage().known) << jamb_cells_free;
+    EXPECT_NEAR(axis.passage().middle.x(), kMiddleX, 1e-9);
+    EXPECT_NEAR(axis.passage().middle.y(), kWallY, 1e-9);
+    EXPECT_NEAR(axis.passage().along.y(), -1.0, 1e-9);
+    Eigen::Vector2d target(0.0, 0.0);
+    ASSERT_TRUE(axis.passage().axis_target({1.9, 4.5}, 0.15, 0.6, target));
+    EXPECT_NEAR(target.x(), kMiddleX, 1e-9);
+    EXPECT_NEAR(target.y(), 4.5 - 0.15, 1e-9);
+    EXPECT_FALSE(axis.passage().axis_target({1.9, 5.0}, 0.15, 0.6, target));  // 0.95 m before it
+
+    // A plan along the corridor instead: the door ahead is dropped.
+    ASSERT_EQ(door.planner.plan(door.map, {15, 49}, {45, 49}, door.plan), PlanResult::found);
+    axis.update(door.plan, 0, door.map, robot);
+    EXPECT_FALSE(axis.passage().known);
+
+    // In the door, with a plan whose narrow stretch lies behind: kept until 0.5 m past it.
+    ASSERT_EQ(door.planner.plan(door.map, {15, 49}, {25, 25}, door.plan), PlanResult::found);
+    axis.update(door.plan, 0, door.map, robot);
+    ASSERT_TRUE(axis.passage().known);
+    ASSERT_EQ(door.planner.plan(door.map, {20, 30}, {40, 20}, door.plan), PlanResult::found);
+    axis.update(door.plan, 0, door.map, {2.0, 3.7});
+    EXPECT_TRUE(axis.passage().known);
+    axis.update(door.plan, 0, door.map, {2.0, 3.5});
+    EXPECT_FALSE(axis.passage().known);
+  }
 }
 
 }  // namespace

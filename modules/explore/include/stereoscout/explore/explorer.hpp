@@ -24,6 +24,8 @@
 // while within scan_guard_distance_m along the plan or its heading it would touch that many
 // of the obstacles the latest scan saw at the camera's height (a person walking in, whom the
 // grid holds only some updates later).
+// With door_axis_before_m, it steers along the axis of the door the plan passes next
+// (door_axis.hpp).
 // If facing the plan's next waypoint would clear the way (pure pursuit cut a corner beside an
 // obstacle), it turns in place to face it instead. Otherwise, with pan_at_goal, it looks around
 // (a standing robot makes no observation update, so nothing would clear a person's trace)
@@ -38,6 +40,7 @@
 #include "stereoscout/core/geometry.hpp"
 #include "stereoscout/core/messages.hpp"
 #include "stereoscout/explore/contact_memory.hpp"
+#include "stereoscout/explore/door_axis.hpp"
 #include "stereoscout/explore/explore_journal.hpp"
 #include "stereoscout/explore/goal_value.hpp"
 #include "stereoscout/explore/grid_view.hpp"
@@ -183,6 +186,7 @@ class Explorer {
   double scan_hold_until_s_ = 0.0;  // the last blocking scan's time + scan_guard_max_age_s
   PathPlanner planner_;
   PathFollower follower_;
+  DoorAxis door_axis_;
   Plan plan_;
   Goal goal_;
   ExploreCounters counters_;

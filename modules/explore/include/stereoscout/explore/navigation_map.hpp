@@ -80,6 +80,11 @@ class NavigationMap {
   // waypoints before and after a doorway in a thin wall are centred on its jambs too), moved
   // by at most half a cell; the cell's centre when either side has none.
   Eigen::Vector2d centred_in_gap(const Eigen::Vector2i& cell, const Eigen::Vector2d& along, double reach_m) const;
+  // The centres of the nearest obstacle cells within reach_m of `centre` on either side of a
+  // path through it (`across`: a unit vector across the path; left: across.(site - centre) > 0);
+  // false unless both sides have one.
+  bool nearest_obstacles_aside(const Eigen::Vector2d& centre, const Eigen::Vector2d& across, double reach_m,
+                               Eigen::Vector2d& left, Eigen::Vector2d& right) const;
   // Cost of moving between two 8-neighbours (metres times the obstacle and unknown penalties
   // of the cell entered); requires passable(to).
   double step_cost(int from_x, int from_y, int to_x, int to_y) const;
@@ -104,11 +109,6 @@ class NavigationMap {
   void distance_transform(std::int32_t* sites, IsSite&& is_site);
   bool unknown_passable(int x, int y) const;
   bool obstacle_site(int x, int y) const;
-  // The centres of the nearest obstacle cells within reach_m of `centre` on either side of a
-  // path through it (`across`: a unit vector across the path; left: across.(site - centre) > 0);
-  // false unless both sides have one.
-  bool nearest_obstacles_aside(const Eigen::Vector2d& centre, const Eigen::Vector2d& across, double reach_m,
-                               Eigen::Vector2d& left, Eigen::Vector2d& right) const;
   void classify();
   void open_way_out();
   bool open_trail_cell(const Eigen::Vector2d& position);

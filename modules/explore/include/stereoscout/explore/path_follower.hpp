@@ -6,12 +6,15 @@
 // corner at speed would leave the planned corridor). When the curvature needs more than
 // the turn-rate limit, the speed drops so that the arc is kept. Where the path runs within
 // an obstacle's safety margin (Plan::narrow) up to the lookahead point, the lookahead shrinks
-// to explore.narrow_lookahead_m, so that the robot keeps to the path through a doorway.
+// to explore.narrow_lookahead_m, so that the robot keeps to the path through a doorway. With
+// explore.door_axis_before_m it steers along the axis of the door it is passing instead
+// (door_axis.hpp).
 
 #include <cstddef>
 
 #include "stereoscout/core/geometry.hpp"
 #include "stereoscout/core/messages.hpp"
+#include "stereoscout/explore/door_axis.hpp"
 #include "stereoscout/explore/grid_view.hpp"
 #include "stereoscout/explore/path_planner.hpp"
 
@@ -27,7 +30,7 @@ class PathFollower {
  public:
   explicit PathFollower(const ExploreParams& params) : params_(params) {}
   void reset() { progress_ = 0; }
-  FollowResult follow(const Plan& plan, const core::Pose2& pose);
+  FollowResult follow(const Plan& plan, const core::Pose2& pose, const DoorPassage& door = DoorPassage());
   std::size_t progress() const { return progress_; }
 
  private:

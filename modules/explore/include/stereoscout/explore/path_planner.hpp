@@ -17,8 +17,9 @@ namespace stereoscout::explore {
 // A path in the map frame: cell centres from the start cell to the goal cell; with
 // explore.gap_centring_reach_m, a waypoint in a narrow gap lies up to half a cell from its
 // cell's centre, in the gap's middle. `narrow` marks the waypoints whose cell lay within the
-// safety margin of an obstacle when the plan was made (a doorway, a gap between furniture):
-// there the follower keeps closer to the path (explore.narrow_lookahead_m).
+// safety margin of an obstacle, or nearer than explore.narrow_clearance_m to one, when the
+// plan was made (a doorway, a gap between furniture): there the follower keeps closer to the
+// path (explore.narrow_lookahead_m).
 struct Plan {
   explicit Plan(std::size_t capacity) : cells(capacity), waypoints(capacity), narrow(capacity) {}
   void clear() {
@@ -54,6 +55,7 @@ class PathPlanner {
   float heuristic(std::int32_t cell) const;
   // Moves the waypoints in narrow gaps to their middle (explore.gap_centring_reach_m).
   void centre_in_gaps(const NavigationMap& map, Plan& plan) const;
+  bool narrow(const NavigationMap& map, int x, int y) const;
 
   std::size_t capacity_;
   int width_ = 0;
@@ -70,6 +72,7 @@ class PathPlanner {
   std::uint32_t stamp_ = 0;
   std::uint64_t expansions_ = 0;
   double gap_centring_reach_m_;
+  double narrow_clearance_m_;
 };
 
 }  // namespace stereoscout::explore

@@ -1,0 +1,83 @@
+#include "stereoscout/explore/door_axis.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace stereoscout::explore {
+namespace {
+// A door's sides are looked for this far from each narrow waypoint: a gap up to 1.5 m wide as
+// the grid holds it (a 0.9 m door whose jambs' edge cells are seen free is 1.1 m wide in it,
+// and a waypoint beside its middle is 0.15 m nearer one side).
+constexpr double kSideReach_m = 0.75;
+// The next door is looked for this much farther along the plan than door_axis_before_m: the
+// plan bends towards a door before it reaches its axis.
+constexpr double kSearchBeyond_m = 0.5;
+// Doors whose middles lie nearer than this to each other are the same door, found again on a
+// new plan.
+constexpr double kSameDoor_m = 0.3;
+}  // namespace
+
+bool DoorPassage::axis_target(const Eigen::Vector2d& robot, double lookahead_m, double before_m,
+                              Eigen::Vector2d& target) const {
+  if (!known || before_m <= 0.0) return false;
+  const Eigen::Vector2d relative = robot - middle;
+  const double ahead = along.dot(relative);
+  const double aside = std::abs(relative.x() * along.y() - relative.y() * along.x());
+  if (ahead < -before_m || ahead > clear_after_m || aside > before_m) return false;
+  target = middle + (ahead + lookahead_m) * along;
+  return true;
+}
+
+bool DoorAxis::next_door(const Plan& plan, std::size_t progress, const NavigationMap& map,
+                         const Eigen::Vector2d& robot, DoorPassage& door) const {
+  const double search_m = params_.explore.door_axis_before_m + kSearchBeyond_m;
+  const std::size_t count = plan.waypoints.size();
+  double travelled = 0.0;
+  Eigen::Vector2d previous = robot;
+  bool in_stretch = false;
+  double narrowest = std::numeric_limits<double>::infinity();
+  for (std::size_t k = progress; k + 1 < count; ++k) {
+    travelled += (plan.waypoints[k] - previous).norm();
+    previous = plan.waypoints[k];
+    if (!plan.narrow[k]) {
+      if (in_stretch || travelled > search_m) break;  // past the next narrow stretch, or too far
+      continue;
+    }
+    in_stretch = true;
+    if (k == 0) continue;
+    const Eigen::Vector2d way = plan.waypoints[k + 1] - plan.waypoints[k - 1];
+    if (way.squaredNorm() == 0.0) continue;
+    Eigen::Vector2d left;
+    Eigen::Vector2d right;
+    const Eigen::Vector2d across = Eigen::Vector2d(-way.y(), way.x()).normalized();
+    if (!map.nearest_obstacles_aside(plan.waypoints[k], across, kSideReach_m, left, right)) continue;
+    const double gap = (left - right).norm();
+    if (gap >= narrowest) continue;
+    narrowest = gap;
+    // `left` lies to the left of the way the plan passes: the axis is the line between the two
+    // cells turned a quarter clockwise.
+    const Eigen::Vector2d left_of_way = (left - right) / gap;
+    door.known = true;
+    door.middle = 0.5 * (left + right);
+    door.along = Eigen::Vector2d(left_of_way.y(), -left_of_way.x());
+    door.clear_after_m = params_.safe_distance_m(map.grid().resolution_m);
+  }
+  return std::isfinite(narrowest);
+}
+
+void DoorAxis::update(const Plan& plan, std::size_t progress, const NavigationMap& map, const Eigen::Vector2d& robot) {
+  DoorPassage door;
+  if (next_door(plan, progress, map, robot, door)) {
+    // A door found again keeps its axis: the robot steers by one line through it.
+    if (!passage_.known || (door.middle - passage_.middle).norm() > kSameDoor_m) passage_ = door;
+    return;
+  }
+  // No door ahead on this plan: the one the robot is passing is kept until the disc has
+  // cleared it (the plan's narrow waypoints there may lie behind the follower's progress);
+  // one it has not reached yet is not on this plan.
+  if (!passage_.known) return;
+  const double ahead = passage_.along.dot(robot - passage_.middle);
+  if (ahead < -passage_.clear_after_m || ahead > passage_.clear_after_m) reset();
+}
+
+}  // namespace stereoscout::explore
