@@ -68,8 +68,11 @@ bool DoorAxis::next_door(const Plan& plan, std::size_t progress, const Navigatio
 void DoorAxis::update(const Plan& plan, std::size_t progress, const NavigationMap& map, const Eigen::Vector2d& robot) {
   DoorPassage door;
   if (next_door(plan, progress, map, robot, door)) {
-    // A door found again keeps its axis: the robot steers by one line through it.
-    if (!passage_.known || (door.middle - passage_.middle).norm() > kSameDoor_m) passage_ = door;
+    // A door found again, passed the same way, keeps its axis: the robot steers by one line
+    // through it.
+    const bool same = passage_.known && (door.middle - passage_.middle).norm() <= kSameDoor_m &&
+                      door.along.dot(passage_.along) > 0.0;
+    if (!same) passage_ = door;
     return;
   }
   // No door ahead on this plan: the one the robot is passing is kept until the disc has

@@ -200,6 +200,12 @@ TEST(DoorAxis, FindsTheDoorOnThePlanAndKeepsItWhilePassing) {
     EXPECT_NEAR(target.y(), 4.5 - 0.15, 1e-9);
     EXPECT_FALSE(axis.passage().axis_target({1.9, 5.0}, 0.15, 0.6, target));  // 0.95 m before it
 
+    // Passed the other way, the same door turns its axis round.
+    ASSERT_EQ(door.planner.plan(door.map, {20, 30}, {15, 49}, door.plan), PlanResult::found);
+    axis.update(door.plan, 0, door.map, {2.05, 3.05});
+    ASSERT_TRUE(axis.passage().known);
+    EXPECT_NEAR(axis.passage().along.y(), 1.0, 1e-9);
+
     // A plan along the corridor instead: the door ahead is dropped.
     ASSERT_EQ(door.planner.plan(door.map, {15, 49}, {45, 49}, door.plan), PlanResult::found);
     axis.update(door.plan, 0, door.map, robot);
