@@ -24,7 +24,8 @@ NavigationMap::NavigationMap(const ExploreParams& params)
       reached_stamp_(new std::uint32_t[capacity_]()),
       reach_steps_(new std::int32_t[capacity_]()),
       queue_(new std::int32_t[capacity_]),
-      region_label_(new std::uint32_t[capacity_]()) {}
+      region_label_(new std::uint32_t[capacity_]()),
+      shadow_(new std::uint8_t[capacity_]()) {}
 
 bool NavigationMap::rebuild(const GridView& grid, const Eigen::Vector2d& robot, const Eigen::Vector2d& extra) {
   grid_ = grid;
@@ -39,6 +40,7 @@ bool NavigationMap::rebuild(const GridView& grid, const Eigen::Vector2d& robot, 
   find_window(robot, extra);
   robot_ = robot;
   extra_unknown_centre_ = extra;
+  find_shadows();
   distance_transform(occupied_site_.get(), [this](int x, int y) { return obstacle_site(x, y); });
   distance_transform(unknown_site_.get(), [this](int x, int y) { return grid_.at(x, y) == CellState::unknown; });
   classify();
@@ -148,6 +150,43 @@ bool NavigationMap::label_region(std::size_t seed) {
   pocket_cells_ += tail;
   return true;
 }
+
+// The camera sees an obstacle's near face; what lies behind it stays unknown until a view from
+// elsewhere, and near the robot unknown cells are passable. Behind each occupied cell with a
+// free 4-neighbour, the unknown cells straight on from that neighbour, up to shadow_depth_m,
+// are taken as the obstacle's body. Along the axes only: a diagonal shadow from a jamb's end
+// would fall across the door it bounds. Never under the robot's disc (it stands there).
+void NavigationMap::find_shadows() {
+  shadow_cells_ = 0;
+  for (int y = window_.y0; y < window_.y1; ++y) {
+    std::fill(shadow_.get() + index(window_.x0, y), shadow_.get() + index(window_.x1 - 1, y) + 1, std::uint8_t{0});
+  }
+  const int depth = static_cast<int>(std::floor(params_.explore.shadow_depth_m / grid_.resolution_m + 1e-9));
+  if (depth <= 0) return;
+  const double radius2 = params_.robot_radius_m * params_.robot_radius_m;
+  constexpr int kSteps[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+  for (int y = window_.y0; y < window_.y1; ++y) {
+    for (int x = window_.x0; x < window_.x1; ++x) {
+      if (grid_.at(x, y) != CellState::occupied || under_robot(x, y)) continue;
+      for (const auto& step : kSteps) {
+        const int fx = x - step[0];
+        const int fy = y - step[1];
+        if (!window_.contains(fx, fy) || grid_.at(fx, fy) != CellState::free) continue;
+        for (int k = 1; k <= depth; ++k) {
+          const int sx = x + k * step[0];
+          const int sy = y + k * step[1];
+          if (!window_.contains(sx, sy) || grid_.at(sx, sy) != CellState::unknown) break;
+          if ((grid_.center(sx, sy) - robot_).squaredNorm() <= radius2) break;
+          std::uint8_t& mark = shadow_[index(sx, sy)];
+          if (mark == 0) ++shadow_cells_;
+          mark = 1;
+        }
+      }
+    }
+  }
+}
+
+bool NavigationMap::in_shadow(int x, int y) const { return window_.contains(x, y) && shadow_[index(x, y)] != 0; }
 
 bool NavigationMap::in_pocket(int x, int y) const {
   return window_.contains(x, y) && region_label_[index(x, y)] == region_stamp_ + 1;
@@ -261,12 +300,14 @@ bool NavigationMap::unknown_passable(int x, int y) const {
 }
 
 // What the robot must keep its radius (and the margin) away from: occupied cells, except deep
-// under it, and with unknown_clearance the unknown cells it may not cross (a blank wall the
-// camera never saw: without this, paths ran along the seen floor with the disc in the wall).
+// under it; the unknown cells in a seen obstacle's shadow; and with unknown_clearance the
+// unknown cells it may not cross (a blank wall the camera never saw: without this, paths ran
+// along the seen floor with the disc in the wall).
 bool NavigationMap::obstacle_site(int x, int y) const {
   const CellState state = grid_.at(x, y);
   if (state == CellState::occupied) return !under_robot(x, y);
-  return state == CellState::unknown && params_.explore.unknown_clearance && !unknown_passable(x, y);
+  if (state != CellState::unknown) return false;
+  return in_shadow(x, y) || (params_.explore.unknown_clearance && !unknown_passable(x, y));
 }
 
 bool NavigationMap::nearest_obstacles_aside(const Eigen::Vector2d& centre, const Eigen::Vector2d& across, double reach_m,

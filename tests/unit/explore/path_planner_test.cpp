@@ -242,6 +242,69 @@ TEST(PathPlanner, WaypointsInADoorwayAreMovedToItsMiddle) {
   }
 }
 
+// A pillar (radius 0.3 m at (3, 2)) the camera saw from the west only, as in the clutter
+// hall: its west rim is occupied, its body and the floor just east of it unknown. The robot
+// stands south-east of it, so those unknown cells are within unknown_travel_radius_m and
+// passable. A plan north past it runs the robot's disc into the pillar's unseen half; with
+// shadow_depth_m the cells behind the seen face are kept clear of, and it keeps clear.
+struct PillarSeenFromTheWest {
+  static constexpr double kPillarRadius_m = 0.3;
+  const Eigen::Vector2d pillar{3.0, 2.0};
+  WalledRoom room;
+  PillarSeenFromTheWest() {
+    for (int y = 0; y < 40; ++y) {
+      for (int x = 0; x < 60; ++x) {
+        const Eigen::Vector2d centre = room.grid.view().center(x, y);
+        const double from_axis = (centre - pillar).norm();
+        if (from_axis > kPillarRadius_m + 0.1) continue;
+        const bool west_rim = from_axis >= kPillarRadius_m - 0.1 && centre.x() < pillar.x() - 0.2;
+        room.grid.set(x, y, west_rim ? CellState::occupied : CellState::unknown);
+      }
+    }
+  }
+  // The least distance from the robot's rim to the pillar along the plan (negative: overlap).
+  double least_clearance_m(const Plan& plan) const {
+    double least = 1e9;
+    for (const Eigen::Vector2i& cell : plan.cells) {
+      const double from_axis = (room.grid.view().center(cell.x(), cell.y()) - pillar).norm();
+      least = std::min(least, from_axis - kPillarRadius_m - room.params.robot_radius_m);
+    }
+    return least;
+  }
+};
+
+TEST(PathPlanner, PlansPastAnObstacleSeenFromOneSideKeepClearOfItsUnseenSide) {
+  PillarSeenFromTheWest scene;
+  const Eigen::Vector2d robot(3.55, 1.35);
+  const Eigen::Vector2i start = scene.room.grid.view().cell_of(robot);
+  const Eigen::Vector2i goal(33, 33);
+  NavigationMap& map = scene.room.map;
+  Plan& plan = scene.room.plan;
+  ASSERT_TRUE(map.rebuild(scene.room.grid.view(), robot, robot));
+  EXPECT_EQ(map.shadow_cells(), 0U);  // off by default
+  ASSERT_EQ(scene.room.planner.plan(map, start, goal, plan), PlanResult::found);
+  const double without = scene.least_clearance_m(plan);
+  EXPECT_LT(without, 0.0);  // -0.098 m
+
+  ExploreParams params = scene.room.params;
+  params.explore.shadow_depth_m = 0.6;
+  NavigationMap shadowed(params);
+  const core::AllocationScope scope;
+  ASSERT_TRUE(shadowed.rebuild(scene.room.grid.view(), robot, robot));
+  EXPECT_EQ(scope.allocations(), 0U);
+  EXPECT_GT(shadowed.shadow_cells(), 0U);
+  ASSERT_EQ(scene.room.planner.plan(shadowed, start, goal, plan), PlanResult::found);
+  EXPECT_GE(scene.least_clearance_m(plan), 0.0) << "without the shadow: " << without;  // 0.201 m
+  // Shadows fall on unknown cells only, never under the robot's disc.
+  for (int y = 0; y < 40; ++y) {
+    for (int x = 0; x < 60; ++x) {
+      if (!shadowed.in_shadow(x, y)) continue;
+      EXPECT_EQ(scene.room.grid.view().at(x, y), CellState::unknown);
+      EXPECT_GT((scene.room.grid.view().center(x, y) - robot).norm(), params.robot_radius_m);
+    }
+  }
+}
+
 TEST(PathPlanner, ReportsBlockedGoalsFullPlansAndNoPath) {
   WalledRoom room;
   auto& [params, map, planner, plan, grid] = room;

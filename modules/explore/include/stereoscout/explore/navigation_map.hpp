@@ -94,6 +94,10 @@ class NavigationMap {
   // No occupied cell on the straight line between the centres of cells a and b (a itself excepted).
   bool in_sight(const Eigen::Vector2i& a, const Eigen::Vector2i& b) const;
   std::uint64_t pocket_cells() const { return pocket_cells_; }  // in the last rebuild
+  // An unknown cell within explore.shadow_depth_m straight behind a seen obstacle face (an
+  // occupied cell with a free neighbour on the other side); kept clear of like an occupied cell.
+  bool in_shadow(int x, int y) const;
+  std::uint64_t shadow_cells() const { return shadow_cells_; }  // in the last rebuild
 
   // Flood fill (8-connected, over passable cells) from `start`; the start cell counts even if
   // it is not passable (the robot stands there).
@@ -115,6 +119,7 @@ class NavigationMap {
   double site_distance_m(const std::int32_t* sites, int x, int y) const;
   bool under_robot(int x, int y) const;
   void find_pockets();
+  void find_shadows();
   // Labels the unknown region of `seed` (4-connected) as visited; true when it is a pocket.
   bool label_region(std::size_t seed);
 
@@ -136,6 +141,8 @@ class NavigationMap {
   std::unique_ptr<std::uint32_t[]> region_label_;
   std::uint32_t region_stamp_ = 0;
   std::uint64_t pocket_cells_ = 0;
+  std::unique_ptr<std::uint8_t[]> shadow_;  // valid in the window
+  std::uint64_t shadow_cells_ = 0;
 };
 
 }  // namespace stereoscout::explore
