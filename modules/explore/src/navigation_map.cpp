@@ -158,11 +158,11 @@ bool NavigationMap::label_region(std::size_t seed) {
 // would fall across the door it bounds. Never under the robot's disc (it stands there).
 void NavigationMap::find_shadows() {
   shadow_cells_ = 0;
+  const int depth = static_cast<int>(std::floor(params_.explore.shadow_depth_m / grid_.resolution_m + 1e-9));
+  if (depth <= 0) return;  // nothing was ever marked
   for (int y = window_.y0; y < window_.y1; ++y) {
     std::fill(shadow_.get() + index(window_.x0, y), shadow_.get() + index(window_.x1 - 1, y) + 1, std::uint8_t{0});
   }
-  const int depth = static_cast<int>(std::floor(params_.explore.shadow_depth_m / grid_.resolution_m + 1e-9));
-  if (depth <= 0) return;
   const double radius2 = params_.robot_radius_m * params_.robot_radius_m;
   constexpr int kSteps[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
   for (int y = window_.y0; y < window_.y1; ++y) {
