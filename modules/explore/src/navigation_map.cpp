@@ -154,10 +154,8 @@ bool NavigationMap::label_region(std::size_t seed) {
 // The camera sees an obstacle's near face; what lies behind it stays unknown until a view from
 // elsewhere, and near the robot unknown cells are passable. Behind each occupied cell with a
 // free 4-neighbour, the unknown cells straight on from that neighbour, up to shadow_depth_m,
-// are taken as the obstacle's body where they would be passable (elsewhere unknown cells are
-// barred already, and keeping clear of them all cost coverage: unknown_clearance). Along the
-// axes only: a diagonal shadow from a jamb's end would fall across the door it bounds. Never
-// under the robot's disc (it stands there).
+// are taken as the obstacle's body. Along the axes only: a diagonal shadow from a jamb's end
+// would fall across the door it bounds. Never under the robot's disc (it stands there).
 void NavigationMap::find_shadows() {
   shadow_cells_ = 0;
   const int depth = static_cast<int>(std::floor(params_.explore.shadow_depth_m / grid_.resolution_m + 1e-9));
@@ -179,7 +177,6 @@ void NavigationMap::find_shadows() {
           const int sy = y + k * step[1];
           if (!window_.contains(sx, sy) || grid_.at(sx, sy) != CellState::unknown) break;
           if ((grid_.center(sx, sy) - robot_).squaredNorm() <= radius2) break;
-          if (!unknown_passable(sx, sy)) continue;  // barred already, and not kept clear of
           std::uint8_t& mark = shadow_[index(sx, sy)];
           if (mark == 0) ++shadow_cells_;
           mark = 1;
