@@ -9,6 +9,8 @@ namespace {
 
 constexpr double kNoSiteDistance_m = 1e9;
 constexpr double kDiagonal = 1.4142135623730951;
+// The four 4-neighbours of a cell, as (dx, dy).
+constexpr int kAxisSteps[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
 
 int cells_for(double metres, double resolution_m) { return static_cast<int>(std::ceil(metres / resolution_m)) + 1; }
 
@@ -127,12 +129,11 @@ bool NavigationMap::label_region(std::size_t seed) {
   std::size_t tail = 0;
   region_label_[seed] = region_stamp_;
   queue_[tail++] = static_cast<std::int32_t>(seed);
-  constexpr int kSteps[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
   while (head < tail) {
     const std::int32_t cell = queue_[head++];
     const int x = cell % grid_.width;
     const int y = cell / grid_.width;
-    for (const auto& step : kSteps) {
+    for (const auto& step : kAxisSteps) {
       const int nx = x + step[0];
       const int ny = y + step[1];
       if (!window_.contains(nx, ny)) {
@@ -164,11 +165,10 @@ void NavigationMap::find_shadows() {
     std::fill(shadow_.get() + index(window_.x0, y), shadow_.get() + index(window_.x1 - 1, y) + 1, std::uint8_t{0});
   }
   const double radius2 = params_.robot_radius_m * params_.robot_radius_m;
-  constexpr int kSteps[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
   for (int y = window_.y0; y < window_.y1; ++y) {
     for (int x = window_.x0; x < window_.x1; ++x) {
       if (grid_.at(x, y) != CellState::occupied || under_robot(x, y)) continue;
-      for (const auto& step : kSteps) {
+      for (const auto& step : kAxisSteps) {
         const int fx = x - step[0];
         const int fy = y - step[1];
         if (!window_.contains(fx, fy) || grid_.at(fx, fy) != CellState::free) continue;
