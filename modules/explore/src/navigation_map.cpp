@@ -11,6 +11,11 @@ constexpr double kNoSiteDistance_m = 1e9;
 constexpr double kDiagonal = 1.4142135623730951;
 // The four 4-neighbours of a cell, as (dx, dy).
 constexpr int kAxisSteps[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+// object_size_ of an occupied cell: its component's size, while find_shadows runs.
+constexpr std::uint8_t kSizeUnmeasured = 0;
+constexpr std::uint8_t kSizeMeasuring = 1;
+constexpr std::uint8_t kSizeObject = 2;
+constexpr std::uint8_t kSizeLarger = 3;
 
 int cells_for(double metres, double resolution_m) { return static_cast<int>(std::ceil(metres / resolution_m)) + 1; }
 
@@ -27,7 +32,8 @@ NavigationMap::NavigationMap(const ExploreParams& params)
       reach_steps_(new std::int32_t[capacity_]()),
       queue_(new std::int32_t[capacity_]),
       region_label_(new std::uint32_t[capacity_]()),
-      shadow_(new std::uint8_t[capacity_]()) {}
+      shadow_(new std::uint8_t[capacity_]()),
+      object_size_(new std::uint8_t[capacity_]()) {}
 
 bool NavigationMap::rebuild(const GridView& grid, const Eigen::Vector2d& robot, const Eigen::Vector2d& extra) {
   grid_ = grid;
@@ -156,13 +162,17 @@ bool NavigationMap::label_region(std::size_t seed) {
 // elsewhere, and near the robot unknown cells are passable. Behind each occupied cell with a
 // free 4-neighbour, the unknown cells straight on from that neighbour, up to shadow_depth_m,
 // are taken as the obstacle's body. Along the axes only: a diagonal shadow from a jamb's end
-// would fall across the door it bounds. Never under the robot's disc (it stands there).
+// would fall across the door it bounds. Never under the robot's disc (it stands there). Only
+// behind an object (a component no larger than shadow_object_max_m): a wall's far side is a
+// room or corridor, and a shadow there narrows the way in beside a door.
 void NavigationMap::find_shadows() {
   shadow_cells_ = 0;
   const int depth = static_cast<int>(std::floor(params_.explore.shadow_depth_m / grid_.resolution_m + 1e-9));
   if (depth <= 0) return;  // nothing was ever marked
   for (int y = window_.y0; y < window_.y1; ++y) {
     std::fill(shadow_.get() + index(window_.x0, y), shadow_.get() + index(window_.x1 - 1, y) + 1, std::uint8_t{0});
+    std::fill(object_size_.get() + index(window_.x0, y), object_size_.get() + index(window_.x1 - 1, y) + 1,
+              kSizeUnmeasured);
   }
   const double radius2 = params_.robot_radius_m * params_.robot_radius_m;
   for (int y = window_.y0; y < window_.y1; ++y) {
@@ -172,6 +182,7 @@ void NavigationMap::find_shadows() {
         const int fx = x - step[0];
         const int fy = y - step[1];
         if (!window_.contains(fx, fy) || grid_.at(fx, fy) != CellState::free) continue;
+        if (!part_of_object(x, y)) break;
         for (int k = 1; k <= depth; ++k) {
           const int sx = x + k * step[0];
           const int sy = y + k * step[1];
@@ -184,6 +195,45 @@ void NavigationMap::find_shadows() {
       }
     }
   }
+}
+
+// Measures the occupied cell's 8-connected component in the window once (its cells all take
+// the answer): an object when its bounding box fits in a square of shadow_object_max_m.
+bool NavigationMap::part_of_object(int x, int y) {
+  const std::size_t seed = index(x, y);
+  if (object_size_[seed] != kSizeUnmeasured) return object_size_[seed] == kSizeObject;
+  const int max_cells = static_cast<int>(std::floor(params_.explore.shadow_object_max_m / grid_.resolution_m + 1e-9));
+  int x0 = x;
+  int x1 = x;
+  int y0 = y;
+  int y1 = y;
+  std::size_t head = 0;
+  std::size_t tail = 0;
+  object_size_[seed] = kSizeMeasuring;
+  queue_[tail++] = static_cast<std::int32_t>(seed);
+  while (head < tail) {
+    const std::int32_t cell = queue_[head++];
+    const int cx = cell % grid_.width;
+    const int cy = cell / grid_.width;
+    x0 = std::min(x0, cx);
+    x1 = std::max(x1, cx);
+    y0 = std::min(y0, cy);
+    y1 = std::max(y1, cy);
+    for (int ny = cy - 1; ny <= cy + 1; ++ny) {
+      for (int nx = cx - 1; nx <= cx + 1; ++nx) {
+        if (!window_.contains(nx, ny) || grid_.at(nx, ny) != CellState::occupied) continue;
+        const std::size_t next = index(nx, ny);
+        if (object_size_[next] != kSizeUnmeasured) continue;
+        object_size_[next] = kSizeMeasuring;
+        queue_[tail++] = static_cast<std::int32_t>(next);
+      }
+    }
+  }
+  const bool object = x1 - x0 + 1 <= max_cells && y1 - y0 + 1 <= max_cells;
+  for (std::size_t k = 0; k < tail; ++k) {
+    object_size_[static_cast<std::size_t>(queue_[k])] = object ? kSizeObject : kSizeLarger;
+  }
+  return object;
 }
 
 bool NavigationMap::in_shadow(int x, int y) const { return window_.contains(x, y) && shadow_[index(x, y)] != 0; }

@@ -305,6 +305,31 @@ TEST(PathPlanner, PlansPastAnObstacleSeenFromOneSideKeepClearOfItsUnseenSide) {
   }
 }
 
+// An object seen from the west (the 0.3 m face of a crate) casts its shadow east; a wall seen
+// from the west (3 m long, its far side unknown: a room not yet entered) casts none, unless
+// the object size is large enough to hold it.
+TEST(PathPlanner, OnlyObjectsCastShadowsNotWalls) {
+  WalledRoom room;
+  room.grid.fill(20, 19, 21, 22, CellState::occupied);  // the crate's face at x = 2.0 m
+  room.grid.fill(21, 19, 30, 22, CellState::unknown);   // and its unseen body
+  room.grid.fill(40, 5, 41, 35, CellState::occupied);   // the wall at x = 4.0 m
+  room.grid.fill(41, 5, 50, 35, CellState::unknown);    // the room behind it
+  ExploreParams params = room.params;
+  params.explore.shadow_depth_m = 0.6;
+  const Eigen::Vector2d robot(1.0, 1.0);
+  NavigationMap objects_only(params);
+  ASSERT_TRUE(objects_only.rebuild(room.grid.view(), robot, robot));
+  for (int x = 21; x < 27; ++x) EXPECT_TRUE(objects_only.in_shadow(x, 20)) << x;
+  EXPECT_FALSE(objects_only.in_shadow(27, 20));  // beyond the depth
+  for (int x = 41; x < 50; ++x) EXPECT_FALSE(objects_only.in_shadow(x, 20)) << x;
+
+  params.explore.shadow_object_max_m = 100.0;
+  NavigationMap every_face(params);
+  ASSERT_TRUE(every_face.rebuild(room.grid.view(), robot, robot));
+  for (int x = 41; x < 47; ++x) EXPECT_TRUE(every_face.in_shadow(x, 20)) << x;
+  EXPECT_FALSE(every_face.in_shadow(47, 20));
+}
+
 TEST(PathPlanner, ReportsBlockedGoalsFullPlansAndNoPath) {
   WalledRoom room;
   auto& [params, map, planner, plan, grid] = room;

@@ -94,8 +94,9 @@ class NavigationMap {
   // No occupied cell on the straight line between the centres of cells a and b (a itself excepted).
   bool in_sight(const Eigen::Vector2i& a, const Eigen::Vector2i& b) const;
   std::uint64_t pocket_cells() const { return pocket_cells_; }  // in the last rebuild
-  // An unknown cell within explore.shadow_depth_m straight behind a seen obstacle face (an
-  // occupied cell with a free neighbour on the other side); kept clear of like an occupied cell.
+  // An unknown cell within explore.shadow_depth_m straight behind a seen object's face (an
+  // occupied cell with a free neighbour on the other side, in a component no larger than
+  // explore.shadow_object_max_m); kept clear of like an occupied cell.
   bool in_shadow(int x, int y) const;
   std::uint64_t shadow_cells() const { return shadow_cells_; }  // in the last rebuild
 
@@ -120,6 +121,7 @@ class NavigationMap {
   bool under_robot(int x, int y) const;
   void find_pockets();
   void find_shadows();
+  bool part_of_object(int x, int y);
   // Labels the unknown region of `seed` (4-connected) as visited; true when it is a pocket.
   bool label_region(std::size_t seed);
 
@@ -141,7 +143,8 @@ class NavigationMap {
   std::unique_ptr<std::uint32_t[]> region_label_;
   std::uint32_t region_stamp_ = 0;
   std::uint64_t pocket_cells_ = 0;
-  std::unique_ptr<std::uint8_t[]> shadow_;  // valid in the window
+  std::unique_ptr<std::uint8_t[]> shadow_;       // valid in the window
+  std::unique_ptr<std::uint8_t[]> object_size_;  // of occupied cells; see find_shadows
   std::uint64_t shadow_cells_ = 0;
 };
 

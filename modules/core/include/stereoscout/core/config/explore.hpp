@@ -25,6 +25,7 @@ struct ExploreConfig {
   bool unknown_travel_near_robot = true;
   bool unknown_clearance = false;
   double shadow_depth_m = 0.0;
+  double shadow_object_max_m = 1.0;
   double unknown_cell_cost = 1.0;
   double preferred_clearance_m = 0.8;
   double obstacle_cost_weight = 4.0;
@@ -89,6 +90,7 @@ inline void describe(ConfigVisitor& v, ExploreConfig& c) {
   v.boolean("unknown_travel_near_robot", c.unknown_travel_near_robot, "Paths may also cross unknown cells within unknown_travel_radius_m of the robot wherever it is (after a look from a goal, the ring within a metre is unseen), except cells that were in view (grid.in_view_range_m): those are surfaces the stereo could not measure, such as a blank wall.");
   v.boolean("unknown_clearance", c.unknown_clearance, "Unknown cells that paths may not cross are kept clear of like occupied cells (robot radius, safety margin, clearance cost): a blank wall stays unknown, and without this paths run along the floor seen up to it with the robot's disc in the wall. Off by default: with it, 1000-particle clutter reached 85.4% in 900 s and the office ended by itself at 16% (docs/results.md).");
   v.number("shadow_depth_m", c.shadow_depth_m, {0.0, 5.0, "m", "An obstacle seen from one side is taken to reach this far behind its face: the unknown cells up to this depth straight behind an occupied cell (along a grid axis, away from a free neighbour) are kept clear of like occupied cells, until a view marks them. A pillar or crate is mapped by the face the camera saw; its far side stays unknown, and within unknown_travel_radius_m of the robot unknown cells are passable, so a plan past it ran the robot's disc through the object's unseen half (the clutter hall's plain pillar, seeds 1 and 2). 0 = off, the default: at 0.6 m (the pillar's diameter) clutter seeds 1-3 reached 99.2, 98.2 and 97.3% in 900 s with no contact, against 96.4, 98.3 and 97.0% with two, but office seeds 1, 2, 4 and 5 reached 94.7, 87.1, 88.8 and 84.2% in 3600 s with 4 contacts, against 99.3, 86.2, 89.3 and 94.3% with 3 (docs/results.md). Not in the paper."});
+  v.number("shadow_object_max_m", c.shadow_object_max_m, {0.0, 1000.0, "m", "With shadow_depth_m: only an object casts a shadow, an occupied component (8-connected, in the navigation map's window) whose bounding box fits in a square of this side. A wall's far side is a room or a corridor, and a shadow there narrows the way in beside a door. 1 m holds the clutter hall's pillars (0.6 m; mapped 0.7 m across), its crates and the office's chairs; a large value lets every face cast one. Not in the paper."});
   v.number("unknown_cell_cost", c.unknown_cell_cost, {0.0, 100.0, "", "Extra A* cost per metre through an unknown cell."});
   v.number("preferred_clearance_m", c.preferred_clearance_m, {0.0, 5.0, "m", "A* pays an obstacle penalty on cells closer than this to an occupied cell."});
   v.number("obstacle_cost_weight", c.obstacle_cost_weight, {0.0, 1000.0, "", "Extra A* cost per metre at the lethal distance, falling linearly to 0 at preferred_clearance_m."});
