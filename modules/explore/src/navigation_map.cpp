@@ -11,6 +11,8 @@ constexpr double kNoSiteDistance_m = 1e9;
 constexpr double kDiagonal = 1.4142135623730951;
 // The four 4-neighbours of a cell, as (dx, dy).
 constexpr int kAxisSteps[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+// The eight 8-neighbours of a cell, as (dx, dy).
+constexpr int kNeighbourSteps[8][2] = {{-1, -1}, {0, -1}, {1, -1}, {-1, 0}, {1, 0}, {-1, 1}, {0, 1}, {1, 1}};
 // object_size_ of an occupied cell: its component's size, while find_shadows runs.
 constexpr std::uint8_t kSizeUnmeasured = 0;
 constexpr std::uint8_t kSizeMeasuring = 1;
@@ -116,6 +118,29 @@ bool NavigationMap::open_trail_cell(const Eigen::Vector2d& position) {
   return true;
 }
 
+// Breadth-first from `seed` (marked by the caller) over the fixed queue: `visit(x, y)` for
+// each cell taken, `enter(nx, ny, from)` for each neighbour by `steps`, which marks it and
+// returns true to queue it. Returns how many cells were queued; they stay in queue_.
+template <std::size_t kSteps, typename Enter, typename Visit>
+std::size_t NavigationMap::breadth_first(std::size_t seed, const int (&steps)[kSteps][2], Enter&& enter,
+                                         Visit&& visit) {
+  std::size_t head = 0;
+  std::size_t tail = 0;
+  queue_[tail++] = static_cast<std::int32_t>(seed);
+  while (head < tail) {
+    const auto cell = static_cast<std::size_t>(queue_[head++]);
+    const int x = static_cast<int>(cell % static_cast<std::size_t>(grid_.width));
+    const int y = static_cast<int>(cell / static_cast<std::size_t>(grid_.width));
+    visit(x, y);
+    for (const auto& step : steps) {
+      const int nx = x + step[0];
+      const int ny = y + step[1];
+      if (enter(nx, ny, cell)) queue_[tail++] = static_cast<std::int32_t>(index(nx, ny));
+    }
+  }
+  return tail;
+}
+
 void NavigationMap::find_pockets() {
   region_stamp_ += 2;
   pocket_cells_ = 0;
@@ -131,27 +156,20 @@ bool NavigationMap::label_region(std::size_t seed) {
   const double cell_area = grid_.resolution_m * grid_.resolution_m;
   const auto max_cells = static_cast<std::size_t>(params_.explore.max_pocket_area_m2 / cell_area);
   bool open = false;  // reaches the window's edge: part of the unexplored world outside
-  std::size_t head = 0;
-  std::size_t tail = 0;
   region_label_[seed] = region_stamp_;
-  queue_[tail++] = static_cast<std::int32_t>(seed);
-  while (head < tail) {
-    const std::int32_t cell = queue_[head++];
-    const int x = cell % grid_.width;
-    const int y = cell / grid_.width;
-    for (const auto& step : kAxisSteps) {
-      const int nx = x + step[0];
-      const int ny = y + step[1];
-      if (!window_.contains(nx, ny)) {
-        open = true;
-        continue;
-      }
-      const std::size_t next = index(nx, ny);
-      if (grid_.at(nx, ny) != CellState::unknown || region_label_[next] >= region_stamp_) continue;
-      region_label_[next] = region_stamp_;
-      queue_[tail++] = static_cast<std::int32_t>(next);
-    }
-  }
+  const std::size_t tail = breadth_first(
+      seed, kAxisSteps,
+      [&](int nx, int ny, std::size_t) {
+        if (!window_.contains(nx, ny)) {
+          open = true;
+          return false;
+        }
+        std::uint32_t& label = region_label_[index(nx, ny)];
+        if (grid_.at(nx, ny) != CellState::unknown || label >= region_stamp_) return false;
+        label = region_stamp_;
+        return true;
+      },
+      [](int, int) {});
   if (open || tail > max_cells) return false;
   for (std::size_t k = 0; k < tail; ++k) region_label_[static_cast<std::size_t>(queue_[k])] = region_stamp_ + 1;
   pocket_cells_ += tail;
@@ -207,28 +225,22 @@ bool NavigationMap::part_of_object(int x, int y) {
   int x1 = x;
   int y0 = y;
   int y1 = y;
-  std::size_t head = 0;
-  std::size_t tail = 0;
   object_size_[seed] = kSizeMeasuring;
-  queue_[tail++] = static_cast<std::int32_t>(seed);
-  while (head < tail) {
-    const std::int32_t cell = queue_[head++];
-    const int cx = cell % grid_.width;
-    const int cy = cell / grid_.width;
-    x0 = std::min(x0, cx);
-    x1 = std::max(x1, cx);
-    y0 = std::min(y0, cy);
-    y1 = std::max(y1, cy);
-    for (int ny = cy - 1; ny <= cy + 1; ++ny) {
-      for (int nx = cx - 1; nx <= cx + 1; ++nx) {
-        if (!window_.contains(nx, ny) || grid_.at(nx, ny) != CellState::occupied) continue;
-        const std::size_t next = index(nx, ny);
-        if (object_size_[next] != kSizeUnmeasured) continue;
-        object_size_[next] = kSizeMeasuring;
-        queue_[tail++] = static_cast<std::int32_t>(next);
-      }
-    }
-  }
+  const std::size_t tail = breadth_first(
+      seed, kNeighbourSteps,
+      [this](int nx, int ny, std::size_t) {
+        if (!window_.contains(nx, ny) || grid_.at(nx, ny) != CellState::occupied) return false;
+        std::uint8_t& size = object_size_[index(nx, ny)];
+        if (size != kSizeUnmeasured) return false;
+        size = kSizeMeasuring;
+        return true;
+      },
+      [&](int cx, int cy) {
+        x0 = std::min(x0, cx);
+        x1 = std::max(x1, cx);
+        y0 = std::min(y0, cy);
+        y1 = std::max(y1, cy);
+      });
   const bool object = x1 - x0 + 1 <= max_cells && y1 - y0 + 1 <= max_cells;
   for (std::size_t k = 0; k < tail; ++k) {
     object_size_[static_cast<std::size_t>(queue_[k])] = object ? kSizeObject : kSizeLarger;
@@ -484,28 +496,20 @@ double NavigationMap::step_cost(int from_x, int from_y, int to_x, int to_y) cons
 void NavigationMap::compute_reachable(const Eigen::Vector2i& start) {
   ++reach_stamp_;
   if (!window_.contains(start.x(), start.y())) return;
-  std::size_t head = 0;
-  std::size_t tail = 0;
-  const auto start_index = static_cast<std::int32_t>(index(start.x(), start.y()));
-  reached_stamp_[static_cast<std::size_t>(start_index)] = reach_stamp_;
-  reach_steps_[static_cast<std::size_t>(start_index)] = 0;
-  queue_[tail++] = start_index;
-  while (head < tail) {
-    const std::int32_t cell = queue_[head++];
-    const int x = cell % grid_.width;
-    const int y = cell / grid_.width;
-    const std::int32_t steps = reach_steps_[static_cast<std::size_t>(cell)] + 1;
-    for (int dy = -1; dy <= 1; ++dy) {
-      for (int dx = -1; dx <= 1; ++dx) {
-        if ((dx == 0 && dy == 0) || !passable(x + dx, y + dy)) continue;
-        const std::size_t next = index(x + dx, y + dy);
-        if (reached_stamp_[next] == reach_stamp_) continue;
+  const std::size_t start_index = index(start.x(), start.y());
+  reached_stamp_[start_index] = reach_stamp_;
+  reach_steps_[start_index] = 0;
+  breadth_first(
+      start_index, kNeighbourSteps,
+      [this](int nx, int ny, std::size_t from) {
+        if (!passable(nx, ny)) return false;
+        const std::size_t next = index(nx, ny);
+        if (reached_stamp_[next] == reach_stamp_) return false;
         reached_stamp_[next] = reach_stamp_;
-        reach_steps_[next] = steps;
-        queue_[tail++] = static_cast<std::int32_t>(next);
-      }
-    }
-  }
+        reach_steps_[next] = reach_steps_[from] + 1;
+        return true;
+      },
+      [](int, int) {});
 }
 
 bool NavigationMap::reachable(int x, int y) const {

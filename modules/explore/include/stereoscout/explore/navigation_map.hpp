@@ -112,6 +112,8 @@ class NavigationMap {
   void find_window(const Eigen::Vector2d& robot, const Eigen::Vector2d& extra);
   template <typename IsSite>
   void distance_transform(std::int32_t* sites, IsSite&& is_site);
+  template <std::size_t kSteps, typename Enter, typename Visit>
+  std::size_t breadth_first(std::size_t seed, const int (&steps)[kSteps][2], Enter&& enter, Visit&& visit);
   bool unknown_passable(int x, int y) const;
   bool obstacle_site(int x, int y) const;
   void classify();
