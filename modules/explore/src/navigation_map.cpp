@@ -20,6 +20,10 @@ constexpr std::uint8_t kSizeObject = 2;
 constexpr std::uint8_t kSizeLarger = 3;
 
 int cells_for(double metres, double resolution_m) { return static_cast<int>(std::ceil(metres / resolution_m)) + 1; }
+// Whole cells in a length (0.6 m is 6 cells of 0.1 m, despite rounding).
+int whole_cells(double metres, double resolution_m) {
+  return static_cast<int>(std::floor(metres / resolution_m + 1e-9));
+}
 
 }  // namespace
 
@@ -185,7 +189,7 @@ bool NavigationMap::label_region(std::size_t seed) {
 // room or corridor, and a shadow there narrows the way in beside a door.
 void NavigationMap::find_shadows() {
   shadow_cells_ = 0;
-  const int depth = static_cast<int>(std::floor(params_.explore.shadow_depth_m / grid_.resolution_m + 1e-9));
+  const int depth = whole_cells(params_.explore.shadow_depth_m, grid_.resolution_m);
   if (depth <= 0) return;  // nothing was ever marked
   for (int y = window_.y0; y < window_.y1; ++y) {
     std::fill(shadow_.get() + index(window_.x0, y), shadow_.get() + index(window_.x1 - 1, y) + 1, std::uint8_t{0});
@@ -220,7 +224,7 @@ void NavigationMap::find_shadows() {
 bool NavigationMap::part_of_object(int x, int y) {
   const std::size_t seed = index(x, y);
   if (object_size_[seed] != kSizeUnmeasured) return object_size_[seed] == kSizeObject;
-  const int max_cells = static_cast<int>(std::floor(params_.explore.shadow_object_max_m / grid_.resolution_m + 1e-9));
+  const int max_cells = whole_cells(params_.explore.shadow_object_max_m, grid_.resolution_m);
   int x0 = x;
   int x1 = x;
   int y0 = y;
