@@ -256,6 +256,7 @@ void write_counters(report::JsonWriter& json, const stack::Stack& stack) {
       .unsigned_integer("contact_cells_held", stack.explorer().contacts().held())
       .unsigned_integer("contact_cells_repeated", stack.explorer().contacts().repeated())
       .unsigned_integer("contact_cells_on_trail", stack.explorer().contacts().on_trail())
+      .unsigned_integer("contact_cells_explained", stack.explorer().contacts().explained())
       .unsigned_integer("contact_clears", e.contact_clears)
       .unsigned_integer("trace_crossings", e.trace_crossings)
       .unsigned_integer("trail_follows", e.trail_follows)

@@ -1,5 +1,6 @@
 #include "stereoscout/explore/contact_memory.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -51,6 +52,7 @@ ContactMemory::ContactMemory(const core::ExploreConfig& config, int max_width, i
       hold_s_(config.contact_hold_s),
       repeat_radius_m_(config.contact_repeat_radius_m),
       trail_radius_m_(config.trail_contact_radius_m),
+      explained_margin_m_(config.contact_explained_margin_m),
       contacts_(static_cast<std::size_t>(config.contact_memory)),
       cleared_points_(static_cast<std::size_t>(config.contact_memory)),
       cells_(new std::uint8_t[static_cast<std::size_t>(max_width) * static_cast<std::size_t>(max_height)]),
@@ -60,6 +62,7 @@ void ContactMemory::record(const GridView& grid, const core::Pose2& pose, double
                            const TrailMemory& trail) {
   // Just beyond the rim: the surface the robot pushes against lies in that cell.
   const double reach = radius_m + 0.5 * grid.resolution_m;
+  const bool explained = mapped_surface_at_rim(grid, pose, radius_m);
   for (const double offset : {0.0, -arc_rad_, arc_rad_}) {
     const double angle = pose.theta + offset;
     const Eigen::Vector2d point = pose.translation() + reach * Eigen::Vector2d(std::cos(angle), std::sin(angle));
@@ -69,6 +72,10 @@ void ContactMemory::record(const GridView& grid, const core::Pose2& pose, double
     }
     const Eigen::Vector2i cell = grid.cell_of(point);
     const bool free = grid.contains(cell.x(), cell.y()) && grid.at(cell.x(), cell.y()) == CellState::free;
+    if (free && explained) {
+      ++explained_;
+      continue;
+    }
     const bool repeated = near_a_cleared_contact(point);
     ++recorded_;
     if (repeated) ++repeated_;
@@ -81,6 +88,24 @@ bool ContactMemory::on_trail(const Eigen::Vector2d& point, const TrailMemory& tr
   const double radius2 = trail_radius_m_ * trail_radius_m_;
   for (std::size_t i = 0; i < trail.size(); ++i) {
     if ((trail[i].position - point).squaredNorm() <= radius2) return true;
+  }
+  return false;
+}
+
+bool ContactMemory::mapped_surface_at_rim(const GridView& grid, const core::Pose2& pose, double radius_m) const {
+  if (explained_margin_m_ <= 0.0) return false;
+  const double reach_m = radius_m + explained_margin_m_;
+  const Eigen::Vector2d centre = pose.translation();
+  const Eigen::Vector2d heading(std::cos(pose.theta), std::sin(pose.theta));
+  const Eigen::Vector2i low = grid.cell_of(centre - Eigen::Vector2d::Constant(reach_m));
+  const Eigen::Vector2i high = grid.cell_of(centre + Eigen::Vector2d::Constant(reach_m));
+  for (int y = std::max(low.y(), 0); y <= std::min(high.y(), grid.height - 1); ++y) {
+    for (int x = std::max(low.x(), 0); x <= std::min(high.x(), grid.width - 1); ++x) {
+      if (grid.at(x, y) != CellState::occupied) continue;
+      const Eigen::Vector2d offset = grid.center(x, y) - centre;
+      // Behind the robot's middle a surface cannot stop a forward push.
+      if (offset.norm() <= reach_m && offset.dot(heading) > 0.0) return true;
+    }
   }
   return false;
 }

@@ -200,6 +200,57 @@ TEST(ContactMemory, ContactPointsWhereTheRobotHadDrivenAreNotRecorded) {
   EXPECT_EQ(off.on_trail(), 0U);
 }
 
+// Leaving a room by a 0.9 m door in a mapped wall at y = 3 m (cells 26-34 open), the pose
+// 0.1 m east of the door's middle, the robot pushes north and stalls on the east jamb beside
+// it. The jamb is in the grid, so the stall is explained: no contact cell is marked on the
+// corridor floor ahead, which the grid holds free and only contact_hold_s would end (it would
+// shut the door the robot stands in).
+TEST(ContactMemory, AStallBesideAMappedJambMarksNoFreeCellAhead) {
+  const TrailMemory no_trail{core::ExploreConfig{}};
+  TestGrid grid(60, 60, CellState::free);
+  grid.fill(0, 30, 26, 31, CellState::occupied);
+  grid.fill(35, 30, 60, 31, CellState::occupied);
+  const core::Pose2 in_the_door{3.15, 2.92, 0.5 * M_PI};  // the jamb cell (35, 30): 0.42 m from the centre
+  core::ExploreConfig config;
+  config.contact_explained_margin_m = 0.15;
+  ContactMemory memory(config, 60, 60);
+  memory.record(grid.view(), in_the_door, 0.35, 10.0, no_trail);
+  EXPECT_EQ(memory.held(), 0U);
+  EXPECT_EQ(memory.explained(), 3U);
+  EXPECT_EQ(memory.stamp(grid.view(), 11.0).cells, grid.view().cells);
+
+  config.contact_explained_margin_m = 0.0;  // off: the three cells ahead close the doorway
+  ContactMemory off(config, 60, 60);
+  off.record(grid.view(), in_the_door, 0.35, 10.0, no_trail);
+  EXPECT_EQ(off.held(), 3U);
+  EXPECT_EQ(off.explained(), 0U);
+  EXPECT_EQ(off.stamp(grid.view(), 11.0).at(31, 33), CellState::occupied);  // ahead: (3.15, 3.32)
+}
+
+// What a mapped surface does not explain: a stall against a blank wall (unknown cells ahead)
+// marks them even with a mapped corner beside the robot, and a surface behind the robot's
+// middle cannot stop it going forward.
+TEST(ContactMemory, UnknownCellsAheadAndSurfacesBehindAreStillContacts) {
+  const TrailMemory no_trail{core::ExploreConfig{}};
+  core::ExploreConfig config;
+  config.contact_explained_margin_m = 0.15;
+
+  TestGrid blank_wall(60, 60, CellState::free);
+  blank_wall.fill(40, 0, 60, 60, CellState::unknown);  // never seen from x = 4 m
+  blank_wall.set(38, 33, CellState::occupied);         // a mapped corner 0.38 m off, to the left
+  ContactMemory at_blank_wall(config, 60, 60);
+  at_blank_wall.record(blank_wall.view(), core::Pose2{3.64, 3.05, 0.0}, 0.35, 10.0, no_trail);
+  EXPECT_EQ(at_blank_wall.held(), 3U);
+  EXPECT_EQ(at_blank_wall.explained(), 0U);
+
+  TestGrid behind(60, 60, CellState::free);
+  behind.set(32, 30, CellState::occupied);  // 0.36 m behind a robot at (3.55, 3.05) facing east
+  ContactMemory with_surface_behind(config, 60, 60);
+  with_surface_behind.record(behind.view(), core::Pose2{3.55, 3.05, 0.0}, 0.35, 10.0, no_trail);
+  EXPECT_EQ(with_surface_behind.held(), 3U);
+  EXPECT_EQ(with_surface_behind.explained(), 0U);
+}
+
 TEST(ContactMemory, AFullListCountsWhatItForgetsAndNothingAllocates) {
   const TrailMemory no_trail{core::ExploreConfig{}};  // the robot has not driven anywhere
   TestGrid grid(60, 60, CellState::unknown);

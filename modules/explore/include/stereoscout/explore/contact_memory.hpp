@@ -24,6 +24,12 @@
 // Leaving a room by the door it came in by, a robot that touches a jamb pushes with the
 // doorway straight ahead, and a contact cell there would close the door for contact_hold_s.
 //
+// A stall with a mapped surface (an occupied cell) within contact_explained_margin_m of the
+// rim, in front of the robot's middle, is explained by it: the robot met what the grid holds,
+// off by the pose error. Its contact points on cells the grid holds free are not recorded:
+// only contact_hold_s would end them, and marked ahead of a robot that met a jamb beside it,
+// they shut the door it stood in. Those on unknown cells are, as for any stall.
+//
 // The contact cells are where the pose estimate put the rim, so they can close a door the robot
 // touched a jamb of (a contact ahead, another backing out): the explorer clears them before it
 // concludes that nothing is left or gives the return up (clear()). But a contact made again
@@ -70,8 +76,8 @@ class ContactMemory {
   ContactMemory(const core::ExploreConfig& config, int max_width, int max_height);
 
   // Records the cells just beyond the rim of a robot of `radius_m` at `pose`: straight ahead
-  // and contact_arc_deg to either side, but those on `trail`. `grid`: the grid the robot
-  // planned on.
+  // and contact_arc_deg to either side, but those on `trail` and, when a mapped surface explains
+  // the stall, those on free cells. `grid`: the grid the robot planned on.
   void record(const GridView& grid, const core::Pose2& pose, double radius_m, double time_s,
               const TrailMemory& trail);
   // Forgets expired and freed contacts, then returns `grid` with the contact cells occupied:
@@ -90,6 +96,7 @@ class ContactMemory {
   std::uint64_t cleared() const { return cleared_; }
   std::uint64_t repeated() const { return repeated_; }  // contacts made again where one was cleared
   std::uint64_t on_trail() const { return on_trail_; }  // not recorded: the robot had driven there
+  std::uint64_t explained() const { return explained_; }  // not recorded: free, beside a mapped surface
   std::uint64_t grid_too_large() const { return grid_too_large_; }
 
  private:
@@ -102,11 +109,13 @@ class ContactMemory {
   bool keep(const Contact& contact, const GridView& grid, double time_s);
   bool near_a_cleared_contact(const Eigen::Vector2d& point) const;
   bool on_trail(const Eigen::Vector2d& point, const TrailMemory& trail) const;
+  bool mapped_surface_at_rim(const GridView& grid, const core::Pose2& pose, double radius_m) const;
 
   double arc_rad_;
   double hold_s_;
   double repeat_radius_m_;
   double trail_radius_m_;
+  double explained_margin_m_;
   core::FixedVector<Contact> contacts_;
   core::FixedVector<Eigen::Vector2d> cleared_points_;  // the oldest are kept when it is full
   std::unique_ptr<std::uint8_t[]> cells_;
@@ -118,6 +127,7 @@ class ContactMemory {
   std::uint64_t cleared_ = 0;
   std::uint64_t repeated_ = 0;
   std::uint64_t on_trail_ = 0;
+  std::uint64_t explained_ = 0;
   std::uint64_t grid_too_large_ = 0;
 };
 
