@@ -55,6 +55,7 @@ ContactMemory::ContactMemory(const core::ExploreConfig& config, int max_width, i
       explained_margin_m_(config.contact_explained_margin_m),
       contacts_(static_cast<std::size_t>(config.contact_memory)),
       cleared_points_(static_cast<std::size_t>(config.contact_memory)),
+      explained_at_(static_cast<std::size_t>(config.contact_memory)),
       cells_(new std::uint8_t[static_cast<std::size_t>(max_width) * static_cast<std::size_t>(max_height)]),
       cell_capacity_(static_cast<std::size_t>(max_width) * static_cast<std::size_t>(max_height)) {}
 
@@ -62,7 +63,8 @@ void ContactMemory::record(const GridView& grid, const core::Pose2& pose, double
                            const TrailMemory& trail) {
   // Just beyond the rim: the surface the robot pushes against lies in that cell.
   const double reach = radius_m + 0.5 * grid.resolution_m;
-  const bool explained = mapped_surface_at_rim(grid, pose, radius_m);
+  const bool explained = mapped_surface_at_rim(grid, pose, radius_m) && !explained_here_before(pose.translation());
+  if (explained) explained_at_.emplace_back(pose.translation());  // none when full: the oldest stay
   for (const double offset : {0.0, -arc_rad_, arc_rad_}) {
     const double angle = pose.theta + offset;
     const Eigen::Vector2d point = pose.translation() + reach * Eigen::Vector2d(std::cos(angle), std::sin(angle));
@@ -106,6 +108,13 @@ bool ContactMemory::mapped_surface_at_rim(const GridView& grid, const core::Pose
       // Behind the robot's middle a surface cannot stop a forward push.
       if (offset.norm() <= reach_m && offset.dot(heading) > 0.0) return true;
     }
+  }
+  return false;
+}
+
+bool ContactMemory::explained_here_before(const Eigen::Vector2d& position) const {
+  for (const Eigen::Vector2d& explained : explained_at_) {
+    if ((explained - position).norm() <= repeat_radius_m_) return true;
   }
   return false;
 }

@@ -204,8 +204,8 @@ TEST(ContactMemory, ContactPointsWhereTheRobotHadDrivenAreNotRecorded) {
 // 0.1 m east of the door's middle, the robot pushes north and stalls on the east jamb beside
 // it. The jamb is in the grid, so the stall is explained: no contact cell is marked on the
 // corridor floor ahead, which the grid holds free and only contact_hold_s would end (it would
-// shut the door the robot stands in).
-TEST(ContactMemory, AStallBesideAMappedJambMarksNoFreeCellAhead) {
+// shut the door the robot stands in). Once: a second stall there is a contact as any.
+TEST(ContactMemory, AStallBesideAMappedJambMarksNoFreeCellAheadOnce) {
   const TrailMemory no_trail{core::ExploreConfig{}};
   TestGrid grid(60, 60, CellState::free);
   grid.fill(0, 30, 26, 31, CellState::occupied);
@@ -218,6 +218,11 @@ TEST(ContactMemory, AStallBesideAMappedJambMarksNoFreeCellAhead) {
   EXPECT_EQ(memory.held(), 0U);
   EXPECT_EQ(memory.explained(), 3U);
   EXPECT_EQ(memory.stamp(grid.view(), 11.0).cells, grid.view().cells);
+  // Stalled again where it stood (the pose is off and the plan leads into the same surface):
+  // no longer explained, the cells ahead are marked and the next plan goes elsewhere.
+  memory.record(grid.view(), core::Pose2{3.17, 2.95, 0.5 * M_PI}, 0.35, 30.0, no_trail);
+  EXPECT_EQ(memory.held(), 3U);
+  EXPECT_EQ(memory.explained(), 3U);
 
   config.contact_explained_margin_m = 0.0;  // off: the three cells ahead close the doorway
   ContactMemory off(config, 60, 60);
