@@ -242,7 +242,7 @@ TEST(ContactMemory, UnknownCellsAheadAndSurfacesBehindAreStillContacts) {
 
   TestGrid blank_wall(60, 60, CellState::free);
   blank_wall.fill(40, 0, 60, 60, CellState::unknown);  // never seen from x = 4 m
-  blank_wall.set(38, 33, CellState::occupied);         // a mapped corner 0.38 m off, to the left
+  blank_wall.set(38, 33, CellState::occupied);         // a mapped corner 0.37 m off, to the left
   ContactMemory at_blank_wall(config, 60, 60);
   at_blank_wall.record(blank_wall.view(), core::Pose2{3.64, 3.05, 0.0}, 0.35, 10.0, no_trail);
   EXPECT_EQ(at_blank_wall.held(), 3U);
