@@ -5,6 +5,16 @@
 #include <cstring>
 
 namespace stereoscout::explore {
+namespace {
+
+bool any_within(const core::FixedVector<Eigen::Vector2d>& points, const Eigen::Vector2d& point, double radius_m) {
+  for (const Eigen::Vector2d& other : points) {
+    if ((other - point).norm() <= radius_m) return true;
+  }
+  return false;
+}
+
+}  // namespace
 
 StallDetector::StallDetector(const core::ExploreConfig& config)
     : window_s_(config.stall_window_s),
@@ -113,18 +123,11 @@ bool ContactMemory::mapped_surface_at_rim(const GridView& grid, const core::Pose
 }
 
 bool ContactMemory::explained_here_before(const Eigen::Vector2d& position) const {
-  for (const Eigen::Vector2d& explained : explained_at_) {
-    if ((explained - position).norm() <= repeat_radius_m_) return true;
-  }
-  return false;
+  return any_within(explained_at_, position, repeat_radius_m_);
 }
 
 bool ContactMemory::near_a_cleared_contact(const Eigen::Vector2d& point) const {
-  if (repeat_radius_m_ <= 0.0) return false;
-  for (const Eigen::Vector2d& cleared : cleared_points_) {
-    if ((cleared - point).norm() <= repeat_radius_m_) return true;
-  }
-  return false;
+  return repeat_radius_m_ > 0.0 && any_within(cleared_points_, point, repeat_radius_m_);
 }
 
 bool ContactMemory::keep(const Contact& contact, const GridView& grid, double time_s) {
