@@ -8,12 +8,14 @@
 //  - report.json has every key docs/report.md promises.
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -136,6 +138,35 @@ TEST_F(StackRun, SameSeedSameOutputsNoHeapInLoopAndEveryReportKey) {
                           "\"exhausted\""}) {
     EXPECT_NE(a.find(key), std::string::npos) << key << "\n" << a;
   }
+}
+
+// --snapshot-at writes what the robot believed at those times, between ticks, and the run is
+// the same run: the same output files, no heap allocation counted in the loop.
+TEST_F(StackRun, SnapshotsOfTheNavigationGridLeaveTheRunAsItWas) {
+  ASSERT_EQ(explore("plain").exit_code, 0);
+  const test::CommandResult snapped = test::run_stereoscout("explore --config " + (dir_ / "config.yaml").string() +
+                                                            " --snapshot-at 8,4.5 --out " + (dir_ / "snapped").string());
+  ASSERT_EQ(snapped.exit_code, 0) << snapped.output;
+  EXPECT_EQ(output_digests(report("plain")), output_digests(report("snapped")));
+  EXPECT_EQ(report_number(report("snapped"), "heap_allocations_in_loop"), 0.0);
+  std::vector<std::string> files;
+  for (const auto& entry : fs::directory_iterator(dir_ / "snapped" / "snapshots")) {
+    files.push_back(entry.path().filename().string());
+  }
+  std::sort(files.begin(), files.end());
+  ASSERT_EQ(files.size(), 7U);  // two times, each .pgm, .yaml and .png, and navigation.csv
+  EXPECT_EQ(files.back(), "navigation.csv");
+  EXPECT_EQ(files.front().rfind("navigation-4.5", 0), 0U) << files.front();
+  std::ifstream summary(dir_ / "snapped" / "snapshots" / "navigation.csv");
+  std::string line;
+  int lines = 0;
+  while (std::getline(summary, line)) ++lines;
+  EXPECT_EQ(lines, 3);  // the header and one line a snapshot
+
+  const test::CommandResult bad = test::run_stereoscout("explore --config " + (dir_ / "config.yaml").string() +
+                                                        " --snapshot-at 4,soon --out " + (dir_ / "bad").string());
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.output.find("'soon' is not a time"), std::string::npos) << bad.output;
 }
 
 // A ring of 4 scans: all but the last 4 of the run's scans reach map.pgm through the archive,

@@ -3,11 +3,14 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "arguments.hpp"
 #include "boards.hpp"
 #include "commands.hpp"
 #include "run_directory.hpp"
+#include "navigation_snapshot.hpp"
 #include "run_loop.hpp"
 #include "reachable_coverage.hpp"
 #include "run_setup.hpp"
@@ -27,6 +30,9 @@ void declare(Arguments& arguments) {
   arguments.option("localization", "SOURCE", "pose source: rbpf, groundtruth or odometry (default: run.localization)");
   arguments.option("out", "DIR", "run directory (created)", "runs/explore");
   arguments.flag("no-log", "do not record the sensor log (no replay possible; saves about 0.6 MB per update)");
+  arguments.option("snapshot-at", "T[,T...]",
+                   "also write the navigation grid, trajectory and plan as they are at these simulated times "
+                   "(into DIR/snapshots/)");
 }
 
 }  // namespace
@@ -40,6 +46,12 @@ int run_explore(int argc, char** argv) {
   declare(arguments);
   if (!arguments.parse(argc, argv)) return arguments.exit_code();
   const auto wall_start = std::chrono::steady_clock::now();
+  std::vector<double> snapshot_times;
+  std::string error;
+  if (arguments.has("snapshot-at") && !parse_snapshot_times(arguments.get("snapshot-at"), snapshot_times, error)) {
+    std::fprintf(stderr, "%s: --snapshot-at: %s\n", kName, error.c_str());
+    return 2;
+  }
   RunSetup setup;
   if (!load_run_setup(arguments, kName, setup)) return 2;
   if (!load_world_of(setup.config, kName, setup)) return 1;
@@ -48,7 +60,6 @@ int run_explore(int argc, char** argv) {
   std::filesystem::create_directories(out, ignored);
   log::LogWriter writer(log_writer_options(setup.config, true));
   const bool record = !arguments.has("no-log");
-  std::string error;
   if (record && !writer.open(out + "/sensors.log", error)) {
     std::fprintf(stderr, "%s: %s\n", kName, error.c_str());
     return 1;
@@ -65,6 +76,13 @@ int run_explore(int argc, char** argv) {
   LoopHooks hooks;
   hooks.coverage = [&] { return probe.coverage(stack.grid_view()); };
   hooks.sample = [&](double time_s) { context.coverage_curve.emplace_back(time_s, probe.coverage(stack.grid_view())); };
+  std::size_t next_snapshot = 0;
+  hooks.after_tick = [&](double time_s) {
+    for (; next_snapshot < snapshot_times.size() && time_s >= snapshot_times[next_snapshot]; ++next_snapshot) {
+      const std::string failed = write_navigation_snapshot(stack, out, snapshot_times[next_snapshot]);
+      if (!failed.empty()) std::fprintf(stderr, "%s: snapshot: %s\n", kName, failed.c_str());
+    }
+  };
   run_to_end(stack, hooks);
   stack.finish();
 

@@ -29,6 +29,7 @@ void run_to_end(stack::Stack& stack, const LoopHooks& hooks) {
   double next_sample_s = 0.0;
   while (stack.tick()) {
     if (hooks.should_stop && hooks.should_stop()) stack.request_stop();
+    if (hooks.after_tick) hooks.after_tick(stack.time_s());
     if (hooks.sample && stack.time_s() >= next_sample_s) {
       hooks.sample(stack.time_s());
       next_sample_s += hooks.sample_period_s;

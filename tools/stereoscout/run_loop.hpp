@@ -16,6 +16,9 @@ struct LoopHooks {
   // curve of report.json. The clock is virtual in simulation, so the samples are too.
   std::function<void(double time_s)> sample;
   double sample_period_s = 30.0;
+  // Called after every tick, outside the tick's allocation scope: e.g. snapshots of the
+  // navigation grid at chosen times (stereoscout explore --snapshot-at).
+  std::function<void(double time_s)> after_tick;
 };
 
 void run_to_end(stack::Stack& stack, const LoopHooks& hooks);
