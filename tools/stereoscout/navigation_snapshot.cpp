@@ -13,6 +13,11 @@
 namespace stereoscout::cli {
 namespace {
 
+// The files hold the known part of the grid and this many cells around it; the picture shows
+// each cell as a square of this many pixels.
+constexpr int kMarginCells = 10;
+constexpr int kPixelsPerCell = 5;
+
 occupancy::RosMap navigation_map_of(const explore::GridView& view) {
   occupancy::RosMap map;
   map.geometry.width_cells = view.width;
@@ -23,6 +28,53 @@ occupancy::RosMap navigation_map_of(const explore::GridView& view) {
   map.cells.resize(map.geometry.cell_count());
   for (std::size_t i = 0; i < map.cells.size(); ++i) map.cells[i] = static_cast<occupancy::CellState>(view.cells[i]);
   return map;
+}
+
+// The bounding box of the known cells, grown by `margin` cells (the whole grid if none is known).
+occupancy::RosMap cropped_to_known(const occupancy::RosMap& map, int margin) {
+  const occupancy::GridGeometry& g = map.geometry;
+  int x0 = g.width_cells;
+  int y0 = g.height_cells;
+  int x1 = -1;
+  int y1 = -1;
+  for (int y = 0; y < g.height_cells; ++y) {
+    for (int x = 0; x < g.width_cells; ++x) {
+      if (map.at(x, y) == occupancy::CellState::unknown) continue;
+      x0 = std::min(x0, x);
+      y0 = std::min(y0, y);
+      x1 = std::max(x1, x);
+      y1 = std::max(y1, y);
+    }
+  }
+  if (x1 < 0) return map;
+  x0 = std::max(0, x0 - margin);
+  y0 = std::max(0, y0 - margin);
+  x1 = std::min(g.width_cells - 1, x1 + margin);
+  y1 = std::min(g.height_cells - 1, y1 + margin);
+  occupancy::RosMap crop;
+  crop.geometry = g;
+  crop.geometry.width_cells = x1 - x0 + 1;
+  crop.geometry.height_cells = y1 - y0 + 1;
+  crop.geometry.origin_x_m = g.origin_x_m + x0 * g.resolution_m;
+  crop.geometry.origin_y_m = g.origin_y_m + y0 * g.resolution_m;
+  for (int y = y0; y <= y1; ++y) {
+    for (int x = x0; x <= x1; ++x) crop.cells.push_back(map.at(x, y));
+  }
+  return crop;
+}
+
+// Each cell as `factor` x `factor` cells, so that the drawn paths are thinner than a cell.
+occupancy::RosMap magnified(const occupancy::RosMap& map, int factor) {
+  occupancy::RosMap large;
+  large.geometry = map.geometry;
+  large.geometry.width_cells *= factor;
+  large.geometry.height_cells *= factor;
+  large.geometry.resolution_m /= factor;
+  large.cells.reserve(large.geometry.cell_count());
+  for (int y = 0; y < large.geometry.height_cells; ++y) {
+    for (int x = 0; x < large.geometry.width_cells; ++x) large.cells.push_back(map.at(x / factor, y / factor));
+  }
+  return large;
 }
 
 MapOverlays overlays_of(const stack::Stack& stack) {
@@ -80,9 +132,9 @@ std::string write_navigation_snapshot(const stack::Stack& stack, const std::stri
   char stem[64];
   std::snprintf(stem, sizeof stem, "/navigation-%.1f", requested_s);
   const std::string base = folder + stem;
-  const occupancy::RosMap map = navigation_map_of(stack.grid_view());
+  const occupancy::RosMap map = cropped_to_known(navigation_map_of(stack.grid_view()), kMarginCells);
   std::string error = occupancy::write_ros_map(map, base + ".pgm", base + ".yaml");
-  if (error.empty()) error = write_map_png(map, overlays_of(stack), base + ".png");
+  if (error.empty()) error = write_map_png(magnified(map, kPixelsPerCell), overlays_of(stack), base + ".png");
   if (error.empty()) error = append_summary(stack, folder + "/navigation.csv", requested_s);
   return error;
 }

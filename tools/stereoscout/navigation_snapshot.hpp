@@ -4,9 +4,10 @@
 // explorer stamps on top are not in it), the ML trajectory so far and the current plan.
 // `stereoscout explore --snapshot-at T` writes them between two ticks, outside the loop's
 // allocation scope, at the first tick at or after T, as snapshots/navigation-<T>.pgm + .yaml
-// (map_server format, the navigation grid's cells) and .png (with the trajectory in blue,
-// odometry in red, the plan in green), and appends a line to snapshots/navigation.csv: T, the
-// tick's time, the explorer's pose, state and goal, and the plan's length.
+// (map_server format: the known part of the navigation grid and a metre around it) and .png
+// (the same, 5 pixels a cell, with the trajectory in blue, odometry in red, the plan in
+// green), and appends a line to snapshots/navigation.csv: T, the tick's time, the explorer's
+// pose, state and goal, and the plan's length.
 
 #include <string>
 #include <vector>
