@@ -9,8 +9,8 @@
 #include "arguments.hpp"
 #include "boards.hpp"
 #include "commands.hpp"
-#include "run_directory.hpp"
 #include "navigation_snapshot.hpp"
+#include "run_directory.hpp"
 #include "run_loop.hpp"
 #include "reachable_coverage.hpp"
 #include "run_setup.hpp"
@@ -58,6 +58,7 @@ int run_explore(int argc, char** argv) {
   const std::string out = arguments.get("out");
   std::error_code ignored;
   std::filesystem::create_directories(out, ignored);
+  std::filesystem::remove_all(out + "/snapshots", ignored);  // an earlier run's, into the same directory
   log::LogWriter writer(log_writer_options(setup.config, true));
   const bool record = !arguments.has("no-log");
   if (record && !writer.open(out + "/sensors.log", error)) {
