@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "map_png.hpp"
+#include "run_directory.hpp"
 #include "stereoscout/occupancy/ros_map.hpp"
 
 namespace stereoscout::cli {
@@ -77,18 +78,6 @@ occupancy::RosMap magnified(const occupancy::RosMap& map, int factor) {
   return large;
 }
 
-MapOverlays overlays_of(const stack::Stack& stack) {
-  MapOverlays overlays;
-  const slam::ParticleFilter& filter = stack.filter();
-  for (slam::TrajectoryNodeHandle n = filter.ml_trajectory_node(); n; n = filter.trajectory().parent(n)) {
-    overlays.estimated_trajectory.push_back(filter.trajectory().get(n).pose.translation());
-  }
-  std::reverse(overlays.estimated_trajectory.begin(), overlays.estimated_trajectory.end());
-  for (const core::Pose2& pose : stack.odometry_path()) overlays.raw_odometry.push_back(pose.translation());
-  for (const Eigen::Vector2d& waypoint : stack.explorer().plan().waypoints) overlays.plan.push_back(waypoint);
-  return overlays;
-}
-
 std::string append_summary(const stack::Stack& stack, const std::string& path, double requested_s) {
   const bool is_new = !std::filesystem::exists(path);
   std::FILE* file = std::fopen(path.c_str(), "a");
@@ -134,7 +123,7 @@ std::string write_navigation_snapshot(const stack::Stack& stack, const std::stri
   const std::string base = folder + stem;
   const occupancy::RosMap map = cropped_to_known(navigation_map_of(stack.grid_view()), kMarginCells);
   std::string error = occupancy::write_ros_map(map, base + ".pgm", base + ".yaml");
-  if (error.empty()) error = write_map_png(magnified(map, kPixelsPerCell), overlays_of(stack), base + ".png");
+  if (error.empty()) error = write_map_png(magnified(map, kPixelsPerCell), map_overlays(stack), base + ".png");
   if (error.empty()) error = append_summary(stack, folder + "/navigation.csv", requested_s);
   return error;
 }

@@ -124,11 +124,7 @@ std::string write_maps(const stack::Stack& stack, const core::SystemConfig& conf
   map = occupancy::classify_grid(*grid, occupancy::CellThresholds::from_config(config.grid));
   std::string error = occupancy::write_ros_map(map, out + "/map.pgm", out + "/map.yaml");
   if (!error.empty()) return error;
-  MapOverlays overlays;
-  for (const auto& [index, pose] : ml_trajectory(stack.filter())) overlays.estimated_trajectory.push_back(pose.translation());
-  for (const core::Pose2& pose : stack.odometry_path()) overlays.raw_odometry.push_back(pose.translation());
-  for (const Eigen::Vector2d& waypoint : stack.explorer().plan().waypoints) overlays.plan.push_back(waypoint);
-  return write_map_png(map, overlays, out + "/map.png");
+  return write_map_png(map, map_overlays(stack), out + "/map.png");
 }
 
 // The explorer's journal, oldest event first (docs/report.md, "explore_events.csv").
@@ -357,6 +353,14 @@ std::string report_json(const stack::Stack& stack, const core::SystemConfig& con
 }
 
 }  // namespace
+
+MapOverlays map_overlays(const stack::Stack& stack) {
+  MapOverlays overlays;
+  for (const auto& [index, pose] : ml_trajectory(stack.filter())) overlays.estimated_trajectory.push_back(pose.translation());
+  for (const core::Pose2& pose : stack.odometry_path()) overlays.raw_odometry.push_back(pose.translation());
+  for (const Eigen::Vector2d& waypoint : stack.explorer().plan().waypoints) overlays.plan.push_back(waypoint);
+  return overlays;
+}
 
 std::string sha256_of_file(const std::string& path) {
   std::ifstream file(path, std::ios::binary);

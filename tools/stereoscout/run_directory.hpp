@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "map_png.hpp"
 #include "stereoscout/core/system_config.hpp"
 #include "stereoscout/host_sim/world.hpp"
 #include "stereoscout/occupancy/final_map.hpp"
@@ -51,6 +52,10 @@ struct RunScore {
 // an error naming the file. `score` receives the figures for the command's summary line.
 std::string write_run_directory(const stack::Stack& stack, const core::SystemConfig& config, const RunContext& context,
                                 const std::string& out, RunScore& score);
+
+// What map.png draws over a map, as the stack has it now: the ML trajectory, the raw
+// odometry and the current plan (also the navigation snapshots' pictures).
+MapOverlays map_overlays(const stack::Stack& stack);
 
 // SHA-256 of a file's bytes as lower-case hex ("" when it cannot be read).
 std::string sha256_of_file(const std::string& path);
