@@ -40,7 +40,8 @@ bool GridGeometry::same_as(const GridGeometry& other) const {
 LogOddsModel LogOddsModel::from_config(const core::GridConfig& config) {
   return {static_cast<float>(config.log_odds_hit), static_cast<float>(config.log_odds_miss),
           static_cast<float>(config.log_odds_min), static_cast<float>(config.log_odds_max),
-          static_cast<float>(config.in_view_range_m), static_cast<float>(config.free_end_sigmas)};
+          static_cast<float>(config.in_view_range_m), static_cast<float>(config.free_end_sigmas),
+          config.once_per_scan};
 }
 
 CellThresholds CellThresholds::from_config(const core::GridConfig& config) {
@@ -82,7 +83,8 @@ OccupancyGrid::OccupancyGrid(const GridGeometry& geometry, const LogOddsModel& m
     : geometry_(geometry),
       model_(model),
       cells_(new float[geometry.cell_count()]),
-      cell_flags_(new std::uint8_t[geometry.cell_count()]) {
+      cell_flags_(new std::uint8_t[geometry.cell_count()]),
+      miss_stamps_(model.once_per_scan ? new std::uint8_t[geometry.cell_count()] : nullptr) {
   STEREOSCOUT_CHECK(geometry.width_cells > 0 && geometry.height_cells > 0 && geometry.resolution_m > 0.0,
                     "occupancy grid needs a positive size and resolution");
   clear();
@@ -91,7 +93,18 @@ OccupancyGrid::OccupancyGrid(const GridGeometry& geometry, const LogOddsModel& m
 void OccupancyGrid::clear() {
   std::fill(cells_.get(), cells_.get() + geometry_.cell_count(), 0.0F);
   std::fill(cell_flags_.get(), cell_flags_.get() + geometry_.cell_count(), std::uint8_t{0});
+  if (miss_stamps_) std::fill(miss_stamps_.get(), miss_stamps_.get() + geometry_.cell_count(), std::uint8_t{0});
+  scan_number_ = 0;
   counts_ = {};
+}
+
+void OccupancyGrid::begin_scan() {
+  if (!miss_stamps_) return;
+  if (scan_number_ == std::numeric_limits<std::uint8_t>::max()) {
+    std::fill(miss_stamps_.get(), miss_stamps_.get() + geometry_.cell_count(), std::uint8_t{0});
+    scan_number_ = 0;
+  }
+  ++scan_number_;
 }
 
 void OccupancyGrid::clear_at(double origin_x_m, double origin_y_m) {
@@ -227,6 +240,11 @@ bool OccupancyGrid::marked_hit_this_scan(int cell_x, int cell_y) const {
 
 void OccupancyGrid::miss(int cell_x, int cell_y) {
   if (!geometry_.contains(cell_x, cell_y) || marked_hit_this_scan(cell_x, cell_y)) return;
+  if (miss_stamps_) {
+    const std::size_t i = index(cell_x, cell_y);
+    if (miss_stamps_[i] == scan_number_) return;  // held an obstacle and missed once by this scan
+    if (cells_[i] > 0.0F) miss_stamps_[i] = scan_number_;
+  }
   add(cell_x, cell_y, model_.miss);
 }
 
@@ -386,6 +404,7 @@ void OccupancyGrid::insert_points(const ScanFrame& frame, EachPoint&& each_point
       if (point.kind == core::DepthScanColumn::Kind::obstacle) set_hit_marks(end_of(point), marked);
     });
   };
+  begin_scan();
   mark_obstacles(true);
   each_point([&](const ScanPoint& point) { insert_column(frame.origin, end_of(point), point); });
   mark_obstacles(false);

@@ -78,6 +78,46 @@ TEST(OccupancyGrid, AFreeColumnsUncertainEndDoesNotEraseAWallButClearsUnknownCel
   }
 }
 
+// A wall at x = 0.6 m (cell 16) seen head on; then a scan whose 12 columns graze along it (all
+// through cell (16, 10), ending beyond it), as a view along a corridor wall from a pose a little
+// off puts them. With once_per_scan that scan lowers the wall's cell once, not twelve times;
+// unknown cells take every column's miss, so one scan still clears the floor it sees.
+TEST(OccupancyGrid, OncePerScanLowersACellHoldingAnObstacleOnceAScan) {
+  core::DepthScan grazing;
+  for (int i = 0; i < 12; ++i) grazing.columns.push_back({0.75F + 0.002F * static_cast<float>(i), 0.0F, Kind::obstacle});
+  for (const bool once : {true, false}) {
+    LogOddsModel model;
+    model.once_per_scan = once;
+    OccupancyGrid grid(small_geometry(), model);
+    core::DepthScan wall = one_column(0.55F, 0.0F, Kind::obstacle);
+    wall.columns.push_back({0.56F, 0.01F, Kind::obstacle});  // two columns end in the wall's cell
+    grid.insert(wall, core::Pose2{0.05, 0.05, 0.0});
+    EXPECT_FLOAT_EQ(grid.log_odds(16, 10), 2 * 0.85F);  // every column's hit
+    EXPECT_FLOAT_EQ(grid.log_odds(12, 10), 2 * -0.4F);  // unknown: every column's miss
+    grid.insert(grazing, core::Pose2{0.05, 0.05, 0.0});
+    EXPECT_NEAR(grid.log_odds(16, 10), once ? 2 * 0.85F - 0.4F : 2 * 0.85F - 12 * 0.4F, 1e-5);
+    EXPECT_FLOAT_EQ(grid.log_odds(12, 10), -4.0F);  // free: every miss, down to the clamp
+    EXPECT_FLOAT_EQ(grid.log_odds(18, 10), 4.0F);
+  }
+}
+
+// The scan numbers of once_per_scan wrap after 255 inserts: every scan still counts once.
+TEST(OccupancyGrid, OncePerScanCountsEveryScanPastTheNumbersWrap) {
+  LogOddsModel model;
+  model.once_per_scan = true;
+  model.max = 1000.0F;
+  OccupancyGrid grid(small_geometry(), model);
+  core::DepthScan wall;
+  core::DepthScan fan;
+  for (int i = 0; i < 3; ++i) {
+    wall.columns.push_back({0.55F, 0.001F * static_cast<float>(i), Kind::obstacle});  // cell (16, 10)
+    fan.columns.push_back({0.75F, 0.001F * static_cast<float>(i), Kind::free});      // through it
+  }
+  for (int scan = 0; scan < 300; ++scan) grid.insert(wall, core::Pose2{0.05, 0.05, 0.0});
+  for (int scan = 0; scan < 600; ++scan) grid.insert(fan, core::Pose2{0.05, 0.05, 0.0});
+  EXPECT_NEAR(grid.log_odds(16, 10), 300.0F * 3.0F * 0.85F - 600.0F * 0.4F, 0.05);
+}
+
 core::DepthScan one_column_visible_from(float x, Kind kind, float floor_visible_from_m) {
   core::DepthScan scan = one_column(x, 0.0F, kind);
   scan.columns[0].floor_visible_from_m = floor_visible_from_m;

@@ -42,6 +42,12 @@
 // just-in-time invariant).
 // (Rays that started at the camera cleared a low box as the robot approached it: the floor
 // seen beyond the box, once the box was below the image, erased the box's cells.)
+// Once per scan (grid.once_per_scan): a scan is one measurement of each cell, not one per
+// column. A cell any column ends in gets log_odds_hit once, and a cell only passed through gets
+// log_odds_miss once, however many columns cross it (OctoMap's scan update, from which the two
+// numbers come). Without it a cell counts a scan as often as columns cross it: a wall cell along
+// which the rays graze is passed by tens of columns of one scan, while a head-on view ends few
+// columns in it at range, so the wall's fate follows the view's geometry, not the evidence.
 // Because of the clamps the result depends on the order of insertion, so "the grid of a
 // trajectory" always means its scans inserted in update order.
 
@@ -82,6 +88,7 @@ struct LogOddsModel {
   float max = 4.0F;
   float in_view_range_m = 0.0F;  // grid.in_view_range_m (0: nothing is marked)
   float free_end_sigmas = 0.0F;  // grid.free_end_sigmas (0: a free column's misses are all alike)
+  bool once_per_scan = false;    // grid.once_per_scan (see the header comment)
   static LogOddsModel from_config(const core::GridConfig& config);
 };
 
@@ -210,6 +217,8 @@ class OccupancyGrid {
   // The same, but not to a cell that holds an obstacle (log-odds above 0).
   void miss_unless_occupied(int cell_x, int cell_y);
   bool marked_hit_this_scan(int cell_x, int cell_y) const;
+  // once_per_scan: starts the numbering of a new scan's misses.
+  void begin_scan();
   void set_hit_marks(const Eigen::Vector2d& end, bool marked);
   bool grid_coordinates(double start_x, double start_y, double end_x, double end_y, GridSegment& segment) const;
   // No cell of the segment (end cell included) lies in the grid: its walk can be skipped.
@@ -231,6 +240,11 @@ class OccupancyGrid {
   LogOddsModel model_;
   std::unique_ptr<float[]> cells_;
   std::unique_ptr<std::uint8_t[]> cell_flags_;  // kLastHitAtCameraHeight | kHitThisScan | kInView
+  // once_per_scan: the number of the scan that last missed each cell, against scan_number_
+  // (counts inserts from 1, wraps to 1 after 255 with every stamp reset); empty otherwise.
+  // Scratch of one insert: never copied, compared or pasted.
+  std::unique_ptr<std::uint8_t[]> miss_stamps_;
+  std::uint8_t scan_number_ = 0;
   InsertCounts counts_;
 };
 

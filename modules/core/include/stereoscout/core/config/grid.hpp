@@ -17,6 +17,7 @@ struct GridConfig {
   double free_threshold = 0.196;
   double in_view_range_m = 0.0;
   double free_end_sigmas = 0.0;
+  bool once_per_scan = false;
   int cache_capacity = 64;
   int scan_history = 4096;
   double final_map_margin_m = 0.5;
@@ -38,6 +39,7 @@ inline void describe(ConfigVisitor& v, GridConfig& c) {
   v.number("free_threshold", c.free_threshold, {0.0, 1.0, "", "Probability below which a cell is free (map.yaml free_thresh)."});
   v.number("in_view_range_m", c.in_view_range_m, {0.0, 100.0, "m", "A cell that a scan column passes from where its floor becomes visible up to this range (to its obstacle, if nearer) was in view. An unknown cell in view is a surface the stereo could not measure (a blank wall), not the camera's blind zone, and the planner never crosses it. Within 2 m the simulator's floor texture is measured (beyond, it fades). 0 (the default) marks nothing: with 2 m the office explored no more than with no unknown travel near the robot at all (44% against 70.5%; docs/results.md)."});
   v.number("free_end_sigmas", c.free_end_sigmas, {0.0, 10.0, "sigma", "Within this many standard deviations of a free column's end range (range * vision.sigma_d_px / disparity) its misses lower no cell that holds an obstacle (log-odds above 0): the column's farthest floor point is the one the disparity error put farthest out, beyond the wall behind it, and floor seen up to a wall from both sides erased the wall. Unknown and free cells there are cleared as before. 0 (the default): every miss alike; at 2 the office's coverage fell from 49.3% to 39.9% over three seeds, as smeared door jambs and a walker's trace were kept too (docs/results.md); not in the paper."});
+  v.boolean("once_per_scan", c.once_per_scan, "A scan changes each cell at most once: log_odds_hit if any of its columns ends there, else log_odds_miss if any passes through, as in OctoMap's scan update, whose numbers log_odds_hit and log_odds_miss are. Off: every column adds its own, so a cell counts a scan as many times as columns cross it, tens of times for a wall along which the rays graze, and a lineage whose pose puts those rays across a seen wall erases it in one scan (docs/results.md); not in the paper.");
   v.integer_field("cache_capacity", c.cache_capacity, {2, 100000, "grids", "Grids the just-in-time cache can hold, all allocated at start-up (width x height x 4 bytes each; paper saw 23 at most for 1000 particles). When full, the grid with the fewest dependents is evicted and counted."});
   v.integer_field("scan_history", c.scan_history, {1, 1000000, "scans", "Depth scans kept for roll-ups and the final map (the paper's run had 2209 updates; 16 bytes a column, 42 MB at 640 columns). Also bounds the walk to a grid-holding ancestor; a roll-up that needs an older scan skips it and counts rollup_incomplete. A scan that leaves the ring goes into the final map's archive (final_map_archive_tiles)."});
   v.number("final_map_margin_m", c.final_map_margin_m, {0.0, 100.0, "m", "Border added around the trajectory and its scans when the final map is sized."});
