@@ -242,8 +242,8 @@ void OccupancyGrid::miss(int cell_x, int cell_y) {
   if (!geometry_.contains(cell_x, cell_y) || marked_hit_this_scan(cell_x, cell_y)) return;
   if (miss_stamps_) {
     const std::size_t i = index(cell_x, cell_y);
-    if (miss_stamps_[i] == scan_number_) return;  // held an obstacle and missed once by this scan
-    if (cells_[i] > 0.0F) miss_stamps_[i] = scan_number_;
+    if (miss_stamps_[i] == scan_number_) return;  // held a low obstacle and missed once by this scan
+    if (cells_[i] > 0.0F && (cell_flags_[i] & kLastHitAtCameraHeight) == 0U) miss_stamps_[i] = scan_number_;
   }
   add(cell_x, cell_y, model_.miss);
 }

@@ -81,7 +81,8 @@ TEST(OccupancyGrid, AFreeColumnsUncertainEndDoesNotEraseAWallButClearsUnknownCel
 // A wall at x = 0.6 m (cell 16) seen head on; then a scan whose 12 columns graze along it (all
 // through cell (16, 10), ending beyond it), as a view along a corridor wall from a pose a little
 // off puts them. With once_per_scan that scan lowers the wall's cell once, not twelve times;
-// unknown cells take every column's miss, so one scan still clears the floor it sees.
+// unknown cells take every column's miss, so one scan still clears the floor it sees, and so
+// does an obstacle seen at the camera's height (a person), which every ray past it would see.
 TEST(OccupancyGrid, OncePerScanLowersACellHoldingAnObstacleOnceAScan) {
   core::DepthScan grazing;
   for (int i = 0; i < 12; ++i) grazing.columns.push_back({0.75F + 0.002F * static_cast<float>(i), 0.0F, Kind::obstacle});
@@ -98,6 +99,12 @@ TEST(OccupancyGrid, OncePerScanLowersACellHoldingAnObstacleOnceAScan) {
     EXPECT_NEAR(grid.log_odds(16, 10), once ? 2 * 0.85F - 0.4F : 2 * 0.85F - 12 * 0.4F, 1e-5);
     EXPECT_FLOAT_EQ(grid.log_odds(12, 10), -4.0F);  // free: every miss, down to the clamp
     EXPECT_FLOAT_EQ(grid.log_odds(18, 10), 4.0F);
+    core::DepthScan person = one_column(0.36F, 0.0F, Kind::obstacle);  // cell (14, 10), at the camera's height
+    person.columns[0].obstacle_at_camera_height = true;
+    for (int scan = 0; scan < 6; ++scan) grid.insert(person, core::Pose2{0.05, 0.05, 0.0});
+    EXPECT_NEAR(grid.log_odds(14, 10), -4.0F + 6 * 0.85F, 1e-5);  // free before, an obstacle now
+    grid.insert(grazing, core::Pose2{0.05, 0.05, 0.0});
+    EXPECT_NEAR(grid.log_odds(14, 10), -4.0F + 6 * 0.85F - 12 * 0.4F, 1e-5);  // walked on: every column's miss
   }
 }
 

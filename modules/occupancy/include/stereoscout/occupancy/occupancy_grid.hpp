@@ -42,15 +42,16 @@
 // just-in-time invariant).
 // (Rays that started at the camera cleared a low box as the robot approached it: the floor
 // seen beyond the box, once the box was below the image, erased the box's cells.)
-// Once per scan (grid.once_per_scan): a scan lowers a cell that holds an obstacle (log-odds
-// above 0) once, however many of its columns pass through it. Without it a cell counts a scan
-// as often as columns cross it: a wall's cell along which the rays graze is passed by tens of
-// columns of one scan, so a view along a wall from a pose a little off (a particle lineage's)
-// erases it at once, and metre-long gaps open in a corridor wall. Unknown and free cells still
-// take every column's miss (one scan clears the floor it sees; four misses make a cell free),
-// and every column ending in a cell adds its hit: quick to believe an obstacle, slow to erase
-// one. A person's trace (saturated by the columns that saw them) then takes about ten scans
-// through it to clear instead of one.
+// Once per scan (grid.once_per_scan): a scan lowers a cell that holds a low obstacle (log-odds
+// above 0, its last hit not at the camera's height: a blank wall seen by its base, a low box)
+// once, however many of its columns pass through it. Without it a cell counts a scan as often
+// as columns cross it: a wall's cell along which the rays graze is passed by tens of columns of
+// one scan, so a view along a wall from a pose a little off (a particle lineage's) erases it at
+// once, and metre-long gaps open in a corridor wall. Unknown and free cells still take every
+// column's miss (one scan clears the floor it sees), every column ending in a cell adds its
+// hit, and so does every column through an obstacle at the camera's height: such an obstacle
+// is in view at every range, so a ray past it is good evidence that it has gone (a person
+// walking on clears in a scan, as before).
 // Because of the clamps the result depends on the order of insertion, so "the grid of a
 // trajectory" always means its scans inserted in update order.
 
