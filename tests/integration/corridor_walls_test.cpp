@@ -44,7 +44,8 @@ struct WallScore {
   int held = 0;        // ... with an occupied cell on either side of the wall's line
   int door_cells = 0;
   int open = 0;        // ... with no occupied cell
-  int held_within_smear = 0;  // wall stretches with an occupied cell within kSmear_m of the line
+  int smear_cells = 0;        // wall stretches kSmear_m or more from a door's edge
+  int held_within_smear = 0;  // ... with an occupied cell within kSmear_m of the line
   int longest_gap = 0;        // the most wall stretches in a row without one (jambs end a gap)
 };
 
@@ -77,6 +78,7 @@ WallScore score_wall(const occupancy::OccupancyGrid& grid, const occupancy::Cell
       score.held += occupied ? 1 : 0;
     }
     if (to_door > kDoorHalfWidth_m + kSmear_m) {
+      ++score.smear_cells;
       score.held_within_smear += near ? 1 : 0;
       gap = near ? 0 : gap + 1;
       score.longest_gap = std::max(score.longest_gap, gap);
@@ -118,9 +120,9 @@ CorridorScores drive_along_the_corridor(const core::SystemConfig& config, double
   scores.south = score_wall(grid, thresholds, kSouthWall_m, {2.0, 9.5}, kDriveFrom_m + 1.5, kDriveTo_m - 1.5);
   scores.north = score_wall(grid, thresholds, kNorthWall_m, {5.5}, kDriveFrom_m + 1.5, kDriveTo_m - 1.5);
   for (const auto& [name, score] : {std::pair{"south", scores.south}, std::pair{"north", scores.north}}) {
-    std::printf("%s wall: %d of %d cells held (%d within %.1f m, longest gap %d), %d of %d door cells open\n", name,
-                score.held, score.wall_cells, score.held_within_smear, kSmear_m, score.longest_gap, score.open,
-                score.door_cells);
+    std::printf("%s wall: %d of %d cells held (%d of %d within %.1f m, longest gap %d), %d of %d door cells open\n",
+                name, score.held, score.wall_cells, score.held_within_smear, score.smear_cells, kSmear_m,
+                score.longest_gap, score.open, score.door_cells);
   }
   return scores;
 }
