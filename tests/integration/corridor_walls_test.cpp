@@ -12,7 +12,9 @@
 #include <cmath>
 #include <cstdio>
 #include <initializer_list>
+#include <memory>
 #include <utility>
+#include <vector>
 
 #include "rendered_scan.hpp"
 #include "stereoscout/core/geometry.hpp"
@@ -94,28 +96,10 @@ struct CorridorScores {
   WallScore north;
 };
 
-// `wander`: the pose the grid is given strays from the truth by up to this much across the
-// corridor and ten times as many degrees of heading, slowly, as a particle lineage's does.
-CorridorScores drive_along_the_corridor(const core::SystemConfig& config, double wander_m = 0.0) {
-  const host_sim::WorldLoad loaded = host_sim::load_world(test::source_path("config/worlds/office.yaml"));
-  EXPECT_TRUE(loaded.ok()) << loaded.error_text();
-  host_sim::World world = loaded.world;
-  world.people.clear();  // the walls, not the walker
-  cli::RenderedScanner scanner(world, config);
-  occupancy::OccupancyGrid grid(
-      occupancy::GridGeometry::centred_on(config.grid, core::Pose2{kDriveFrom_m, kCorridorMiddle_m, 0.0}),
-      occupancy::LogOddsModel::from_config(config.grid));
-  std::uint32_t frame_index = 0;
-  for (double travelled = 0.0; travelled <= kDriveTo_m - kDriveFrom_m; travelled += kStep_m) {
-    const core::Pose2 pose{kDriveFrom_m + travelled, kCorridorMiddle_m + 0.3 * std::sin(0.7 * travelled),
-                           core::degrees_to_radians(10.0) * std::sin(1.3 * travelled)};
-    const core::Pose2 believed{pose.x, pose.y + wander_m * std::sin(0.37 * travelled),
-                               pose.theta + core::degrees_to_radians(10.0 * wander_m) * std::sin(0.23 * travelled)};
-    if (scanner.scan_at(pose, frame_index++)) grid.insert(scanner.scan(), believed);
-  }
+CorridorScores score_corridor(const occupancy::OccupancyGrid& grid, const core::GridConfig& grid_config) {
   // Scored where the drive saw the walls: the camera (77 degrees across) sees a wall beside
   // it only from 1.1-1.4 m ahead on, and the last stretch only ahead, at a slant.
-  const occupancy::CellThresholds thresholds = occupancy::CellThresholds::from_config(config.grid);
+  const occupancy::CellThresholds thresholds = occupancy::CellThresholds::from_config(grid_config);
   CorridorScores scores;
   scores.south = score_wall(grid, thresholds, kSouthWall_m, {2.0, 9.5}, kDriveFrom_m + 1.5, kDriveTo_m - 1.5);
   scores.north = score_wall(grid, thresholds, kNorthWall_m, {5.5}, kDriveFrom_m + 1.5, kDriveTo_m - 1.5);
@@ -125,6 +109,42 @@ CorridorScores drive_along_the_corridor(const core::SystemConfig& config, double
                 score.longest_gap, score.open, score.door_cells);
   }
   return scores;
+}
+
+// One drive (rendering is the cost), its scans inserted into a grid per entry of
+// `grid_configs`. `wander`: the pose the grids are given strays from the truth by up to this
+// much across the corridor and ten times as many degrees of heading, slowly, as a particle
+// lineage's does.
+std::vector<CorridorScores> drive_along_the_corridor(const core::SystemConfig& config,
+                                                     const std::vector<core::GridConfig>& grid_configs,
+                                                     double wander_m = 0.0) {
+  const host_sim::WorldLoad loaded = host_sim::load_world(test::source_path("config/worlds/office.yaml"));
+  EXPECT_TRUE(loaded.ok()) << loaded.error_text();
+  host_sim::World world = loaded.world;
+  world.people.clear();  // the walls, not the walker
+  cli::RenderedScanner scanner(world, config);
+  std::vector<std::unique_ptr<occupancy::OccupancyGrid>> grids;
+  for (const core::GridConfig& grid_config : grid_configs) {
+    grids.push_back(std::make_unique<occupancy::OccupancyGrid>(
+        occupancy::GridGeometry::centred_on(grid_config, core::Pose2{kDriveFrom_m, kCorridorMiddle_m, 0.0}),
+        occupancy::LogOddsModel::from_config(grid_config)));
+  }
+  std::uint32_t frame_index = 0;
+  for (double travelled = 0.0; travelled <= kDriveTo_m - kDriveFrom_m; travelled += kStep_m) {
+    const core::Pose2 pose{kDriveFrom_m + travelled, kCorridorMiddle_m + 0.3 * std::sin(0.7 * travelled),
+                           core::degrees_to_radians(10.0) * std::sin(1.3 * travelled)};
+    const core::Pose2 believed{pose.x, pose.y + wander_m * std::sin(0.37 * travelled),
+                               pose.theta + core::degrees_to_radians(10.0 * wander_m) * std::sin(0.23 * travelled)};
+    if (!scanner.scan_at(pose, frame_index++)) continue;
+    for (const auto& grid : grids) grid->insert(scanner.scan(), believed);
+  }
+  std::vector<CorridorScores> scores;
+  for (std::size_t i = 0; i < grids.size(); ++i) scores.push_back(score_corridor(*grids[i], grid_configs[i]));
+  return scores;
+}
+
+CorridorScores drive_along_the_corridor(const core::SystemConfig& config) {
+  return drive_along_the_corridor(config, {config.grid}).front();
 }
 
 double held_fraction(const WallScore& score) { return static_cast<double>(score.held) / score.wall_cells; }
@@ -155,11 +175,12 @@ TEST(OfficeCorridor, WithTheWallBaseOnlyAsFarAsTheFloorEndRuleTheWallsAreWornAwa
 // walls stay closed, smeared by the wander, and the doors open. (Off by default: in whole runs
 // the other cells it holds shut doors; docs/results.md.)
 TEST(OfficeCorridor, WithAWanderingPoseTheWallsStayClosedWhenAScanLowersAnObstacleOnce) {
-  core::SystemConfig config;
-  const double wander_m = 0.1;
-  const CorridorScores per_column = drive_along_the_corridor(config, wander_m);
-  config.grid.once_per_scan = true;
-  const CorridorScores once = drive_along_the_corridor(config, wander_m);
+  const core::SystemConfig config;
+  core::GridConfig once_per_scan = config.grid;
+  once_per_scan.once_per_scan = true;
+  const std::vector<CorridorScores> scores = drive_along_the_corridor(config, {config.grid, once_per_scan}, 0.1);
+  const CorridorScores& per_column = scores[0];
+  const CorridorScores& once = scores[1];
   EXPECT_GE(std::max(per_column.south.longest_gap, per_column.north.longest_gap), 8);
   for (const WallScore& score : {once.south, once.north}) {
     EXPECT_LE(score.longest_gap, 1);
