@@ -108,7 +108,8 @@ TEST(OccupancyGrid, OncePerScanLowersACellHoldingAnObstacleOnceAScan) {
   }
 }
 
-// The scan numbers of once_per_scan wrap after 255 inserts: every scan still counts once.
+// Past the wrap of the scan numbers (after 255 inserts) consecutive scans still count once
+// each: the numbers go on changing from scan to scan.
 TEST(OccupancyGrid, OncePerScanCountsEveryScanPastTheNumbersWrap) {
   LogOddsModel model;
   model.once_per_scan = true;
@@ -123,6 +124,30 @@ TEST(OccupancyGrid, OncePerScanCountsEveryScanPastTheNumbersWrap) {
   for (int scan = 0; scan < 300; ++scan) grid.insert(wall, core::Pose2{0.05, 0.05, 0.0});
   for (int scan = 0; scan < 600; ++scan) grid.insert(fan, core::Pose2{0.05, 0.05, 0.0});
   EXPECT_NEAR(grid.log_odds(16, 10), 300.0F * 3.0F * 0.85F - 600.0F * 0.4F, 0.05);
+}
+
+// A cell lowered once and then left alone for a whole round of scan numbers (255; every stamp
+// is reset when they restart) is lowered again by the next scan through it, wherever in the
+// round that scan falls: a stale stamp equal to the new number would skip it.
+TEST(OccupancyGrid, OncePerScanLowersACellAgainAfterAWholeRoundOfScanNumbers) {
+  LogOddsModel model;
+  model.once_per_scan = true;
+  core::DepthScan wall;
+  core::DepthScan through;
+  for (int i = 0; i < 3; ++i) {
+    wall.columns.push_back({0.55F, 0.001F * static_cast<float>(i), Kind::obstacle});  // cell (16, 10)
+    through.columns.push_back({0.75F, 0.001F * static_cast<float>(i), Kind::free});  // passes it
+  }
+  const core::DepthScan elsewhere = one_column(0.0F, -0.5F, Kind::free);  // away from it
+  const core::Pose2 pose{0.05, 0.05, 0.0};
+  for (int scans_between = 250; scans_between <= 260; ++scans_between) {
+    OccupancyGrid grid(small_geometry(), model);
+    grid.insert(wall, pose);
+    grid.insert(through, pose);
+    for (int scan = 0; scan < scans_between; ++scan) grid.insert(elsewhere, pose);
+    grid.insert(through, pose);
+    EXPECT_NEAR(grid.log_odds(16, 10), 3 * 0.85F - 2 * 0.4F, 1e-5) << scans_between;
+  }
 }
 
 core::DepthScan one_column_visible_from(float x, Kind kind, float floor_visible_from_m) {
