@@ -272,6 +272,9 @@ void write_counters(report::JsonWriter& json, const stack::Stack& stack) {
       .unsigned_integer("estimates_refused_list_full", f.estimates_refused_list_full)
       .unsigned_integer("changes_refused_pool_full", f.changes_refused_pool_full)
       .unsigned_integer("updates_refused_trajectory_full", f.updates_refused_trajectory_full)
+      .unsigned_integer("estimate_lineage_switches", f.estimate_lineage_switches)
+      .unsigned_integer("estimate_switch_depth_sum", f.estimate_switch_depth_sum)
+      .unsigned_integer("estimate_switch_depth_max", f.estimate_switch_depth_max)
       .end_object();
 }
 

@@ -1,5 +1,6 @@
 #include "stereoscout/slam/particle_filter.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -47,7 +48,10 @@ ParticleFilter::ParticleFilter(const core::FilterConfig& config, const core::Cam
   start(core::OdometryReading{});
 }
 
-ParticleFilter::~ParticleFilter() { release_particles(*particles_); }
+ParticleFilter::~ParticleFilter() {
+  set_estimate({});
+  release_particles(*particles_);
+}
 
 void ParticleFilter::release_particles(core::FixedVector<Particle>& particles) {
   for (Particle& p : particles) {
@@ -75,6 +79,7 @@ void ParticleFilter::start(const core::OdometryReading& odometry, const core::Po
   last_odometry_ = odometry.pose;
   update_index_ = 1;  // the root is update 0
   ml_slot_ = 0;
+  set_estimate(root);
 }
 
 void ParticleFilter::start(const core::OdometryReading& odometry, const core::Pose2& initial_pose,
@@ -126,6 +131,7 @@ UpdateResult ParticleFilter::update(const core::OdometryReading& odometry, Obser
   extend_trajectories(odometry.timestamp_ns);
   normalise_weights();
   ml_slot_ = best_slot();
+  follow_estimate();
   result.effective_sample_size = effective_sample_size();
   if (result.effective_sample_size < config_.resample_ess_fraction * static_cast<double>(particles_->size())) {
     resample();
@@ -246,6 +252,58 @@ std::size_t ParticleFilter::best_slot() const {
     }
   }
   return best;
+}
+
+void ParticleFilter::follow_estimate() {
+  const std::size_t none = particles_->size();
+  std::size_t chosen = ml_slot_;
+  if (config_.estimate_lineage_margin > 0.0 && estimate_node_) {
+    std::size_t best_descendant = none;
+    for (std::size_t slot = 0; slot < particles_->size(); ++slot) {
+      const Particle& p = (*particles_)[slot];
+      if ((best_descendant == none || p.log_weight > (*particles_)[best_descendant].log_weight) &&
+          descends_from(p.trajectory, estimate_node_)) {
+        best_descendant = slot;
+      }
+    }
+    if (best_descendant != none && (*particles_)[best_descendant].log_weight >= -config_.estimate_lineage_margin) {
+      chosen = best_descendant;
+    }
+  }
+  const TrajectoryNodeHandle node = (*particles_)[chosen].trajectory;
+  if (estimate_node_ && !descends_from(node, estimate_node_)) {
+    const std::uint64_t depth = depth_to_common_ancestor(node, estimate_node_);
+    ++counters_.estimate_lineage_switches;
+    counters_.estimate_switch_depth_sum += depth;
+    counters_.estimate_switch_depth_max = std::max(counters_.estimate_switch_depth_max, depth);
+  }
+  set_estimate(node);
+}
+
+bool ParticleFilter::descends_from(TrajectoryNodeHandle node, TrajectoryNodeHandle ancestor) const {
+  const std::uint32_t ancestor_index = trajectory_.get(ancestor).update_index;
+  while (node && trajectory_.get(node).update_index > ancestor_index) {
+    node = trajectory_.parent(node);
+  }
+  return node == ancestor;
+}
+
+std::uint32_t ParticleFilter::depth_to_common_ancestor(TrajectoryNodeHandle newer, TrajectoryNodeHandle older) const {
+  const std::uint32_t older_index = trajectory_.get(older).update_index;
+  while (newer && older && newer != older) {
+    if (trajectory_.get(newer).update_index >= trajectory_.get(older).update_index) {
+      newer = trajectory_.parent(newer);
+    } else {
+      older = trajectory_.parent(older);
+    }
+  }
+  return older ? older_index - trajectory_.get(older).update_index : older_index;
+}
+
+void ParticleFilter::set_estimate(TrajectoryNodeHandle node) {
+  if (node) trajectory_.retain(node);
+  if (estimate_node_) trajectory_.release(estimate_node_);
+  estimate_node_ = node;
 }
 
 double ParticleFilter::effective_sample_size() const {

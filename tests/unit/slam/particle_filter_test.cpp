@@ -229,6 +229,81 @@ TEST(ParticleFilter, RestartReleasesEveryNodeAndTheTrajectoryKeepsItsAncestry) {
   EXPECT_EQ(filter.trajectory().in_use(), 1u);
 }
 
+// Whether `node` descends from `ancestor` (or is it), by walking up the tree.
+bool descends(const TrajectoryTree& tree, TrajectoryNodeHandle node, TrajectoryNodeHandle ancestor) {
+  for (; node; node = tree.parent(node)) {
+    if (node == ancestor) return true;
+  }
+  return false;
+}
+
+struct EstimateFollowing {
+  std::uint64_t switches = 0;       // the estimate left the previous update's lineage
+  std::uint64_t forced = 0;         // ... when no particle descended from it any more
+  bool always_ml = true;
+  bool poses_match = true;
+};
+
+// A noisy drive round the landmark ring, resampling often; watches the estimate at each update.
+EstimateFollowing follow_estimates(double margin, std::uint64_t* counted_switches) {
+  core::FilterConfig config = small_config(60);
+  config.motion_noise_translation_per_m = 0.15;
+  config.motion_noise_rotation_per_rad = 0.15;
+  config.motion_noise_rotation_per_m = 0.05;
+  config.resample_ess_fraction = 0.7;
+  config.estimate_lineage_margin = margin;
+  ParticleFilter filter(config, core::CameraMount{}, 21);
+  filter.start(odometry_at(0, true_pose(0)), true_pose(0));
+  EstimateFollowing seen;
+  TrajectoryNodeHandle previous = filter.estimate_node();
+  filter.trajectory().retain(previous);
+  for (int step = 1; step <= 60; ++step) {
+    const auto observations = observe_all(true_pose(step), Eigen::Isometry3d::Identity(), 8, step, 0.05);
+    // Which of the particles before this update lead on from the previous estimate: after the
+    // update their nodes' parents are those particles' nodes.
+    bool any_descends_before = false;
+    for (std::size_t slot = 0; slot < filter.particle_count(); ++slot) {
+      any_descends_before |= descends(filter.trajectory(), filter.particle(slot).trajectory, previous);
+    }
+    filter.update(odometry_at(step, true_pose(step)), as_list(observations), Eigen::Isometry3d::Identity());
+    const TrajectoryNodeHandle estimate = filter.estimate_node();
+    if (!descends(filter.trajectory(), estimate, previous)) {
+      ++seen.switches;
+      if (!any_descends_before) ++seen.forced;
+    }
+    seen.poses_match &= filter.estimate_pose().x == filter.trajectory().get(estimate).pose.x;
+    filter.trajectory().retain(estimate);
+    filter.trajectory().release(previous);
+    previous = estimate;
+  }
+  // The ML particle after the last update (resampling carries it to one of its copies).
+  seen.always_ml = margin > 0.0 || filter.ml_trajectory_node() == previous;
+  filter.trajectory().release(previous);
+  *counted_switches = filter.counters().estimate_lineage_switches;
+  return seen;
+}
+
+TEST(ParticleFilter, WithoutAMarginTheEstimateIsTheMlParticleAndItsChangesOfLineageAreCounted) {
+  std::uint64_t counted = 0;
+  const EstimateFollowing ml = follow_estimates(0.0, &counted);
+  EXPECT_TRUE(ml.always_ml);
+  EXPECT_TRUE(ml.poses_match);
+  EXPECT_GT(ml.switches, 3u);  // the ML particle often comes from another lineage
+  EXPECT_EQ(counted, ml.switches);
+}
+
+TEST(ParticleFilter, WithAMarginTheEstimateLeavesItsLineageOnlyWhenItDiesOut) {
+  std::uint64_t ml_counted = 0;
+  const EstimateFollowing ml = follow_estimates(0.0, &ml_counted);
+  std::uint64_t counted = 0;
+  const EstimateFollowing kept = follow_estimates(100.0, &counted);
+  EXPECT_TRUE(kept.poses_match);
+  EXPECT_EQ(counted, kept.switches);
+  // With a margin wider than any weight difference, every switch is one the lineage forced.
+  EXPECT_EQ(kept.switches, kept.forced);
+  EXPECT_LT(kept.switches, ml.switches);
+}
+
 struct FreedNodes {
   int count = 0;
   static void on_free(void* context, const TrajectoryNode& node) {

@@ -93,7 +93,7 @@ Stack::Stack(const core::SystemConfig& config, const StackOptions& options, cons
       board_(board),
       stopwatch_(stopwatch),
       observations_(static_cast<std::size_t>(config.vision.max_features)),
-      live_nodes_(static_cast<std::size_t>(filter_config_for(config.filter, options.localization).particle_capacity)),
+      live_nodes_(static_cast<std::size_t>(filter_config_for(config.filter, options.localization).particle_capacity) + 1),
       seen_obstacles_(static_cast<std::size_t>(config.camera.width_px)),
       odometry_history_(kOdometryHistory),
       update_records_(records_for(options.max_time_s, config.budgets.tasks[3].rate_hz)),
@@ -154,7 +154,7 @@ bool Stack::start(double start_timeout_s, std::string& error) {
       static_cast<std::size_t>(config_.grid.final_map_archive_tiles), occupancy::LogOddsModel::from_config(config_.grid),
       filter_->trajectory());
   view_ = navigation_view(geometry, cells_.data(), in_view_.data());
-  pose_at_update_ = filter_->ml_pose();
+  pose_at_update_ = filter_->estimate_pose();
   odometry_at_update_ = first.pose;
   rollup_due_ = true;  // the root gets a grid, so every lineage has one above it
   grid_rollup();
@@ -371,7 +371,7 @@ core::Status Stack::observation_update() {
   const std::uint32_t index = filter_->trajectory().get(filter_->ml_trajectory_node()).update_index;
   archive_->keep_leaving_scan(grid_->scans(), index, filter_->ml_trajectory_node());
   grid_->record_scan(index, scan_);
-  pose_at_update_ = filter_->ml_pose();
+  pose_at_update_ = filter_->estimate_pose();
   odometry_at_update_ = odometry_at_frame;
   keep_seen_obstacles(frame_ns);
   update_records_.push_back(UpdateRecord{frame_ns, index, odometry_at_frame, frame_truth_, frame_has_truth_});
@@ -393,7 +393,8 @@ core::Status Stack::grid_rollup() {
   rollup_due_ = false;
   live_nodes_.clear();
   for (std::size_t i = 0; i < filter_->particle_count(); ++i) live_nodes_.push_back(filter_->particle(i).trajectory);
-  grid_->update(filter_->ml_trajectory_node(), live_nodes_.data(), live_nodes_.size());
+  live_nodes_.push_back(filter_->estimate_node());  // resampling may have left no particle on it
+  grid_->update(filter_->estimate_node(), live_nodes_.data(), live_nodes_.size());
   if (const occupancy::OccupancyGrid* grid = grid_->ml_grid()) occupancy::classify_cells(*grid, thresholds_, cells_.data(), in_view_.data());
   grid_changed_ = true;
   ++counters_.rollups;

@@ -61,6 +61,11 @@ struct FilterCounters {
   std::uint64_t estimates_refused_list_full = 0;  // identity already holds estimates_per_landmark
   std::uint64_t changes_refused_pool_full = 0;    // landmark pools short (see LandmarkStore)
   std::uint64_t log_likelihood_floored = 0;       // observation likelihoods raised to the floor
+  // The estimate's lineage (estimate_node()): updates whose estimate does not descend from
+  // the previous update's, and how many updates back their common ancestor lay (summed, max).
+  std::uint64_t estimate_lineage_switches = 0;
+  std::uint64_t estimate_switch_depth_sum = 0;
+  std::uint64_t estimate_switch_depth_max = 0;
 };
 
 struct UpdateResult {
@@ -103,6 +108,13 @@ class ParticleFilter {
   core::Pose2 ml_pose() const { return ml_particle().pose; }
   TrajectoryNodeHandle ml_trajectory_node() const { return ml_particle().trajectory; }
   const LandmarkMap& ml_map() const { return ml_particle().map; }
+  // The particle the rest of the stack follows (the grid, the explorer's pose): the ML
+  // particle, or with filter.estimate_lineage_margin the best particle descending from the
+  // previous update's estimate while its log-weight is within the margin of the best. Chosen
+  // before resampling; the node is retained, so it stays valid when resampling left no copy
+  // of its particle (the next update then follows the ML particle).
+  TrajectoryNodeHandle estimate_node() const { return estimate_node_; }
+  core::Pose2 estimate_pose() const { return trajectory_.get(estimate_node_).pose; }
   core::Pose2 weighted_mean_pose() const;
   double effective_sample_size() const;
   std::uint32_t update_index() const { return update_index_; }
@@ -121,6 +133,12 @@ class ParticleFilter {
   void extend_trajectories(std::int64_t timestamp_ns);
   void normalise_weights();
   std::size_t best_slot() const;
+  // Sets estimate_node_ from this update's nodes and weights, and counts a change of lineage.
+  void follow_estimate();
+  bool descends_from(TrajectoryNodeHandle node, TrajectoryNodeHandle ancestor) const;
+  // Updates from `older`'s back to the newest node both descend from.
+  std::uint32_t depth_to_common_ancestor(TrajectoryNodeHandle newer, TrajectoryNodeHandle older) const;
+  void set_estimate(TrajectoryNodeHandle node);
   void resample();
 
   core::FilterConfig config_;
@@ -138,6 +156,7 @@ class ParticleFilter {
   core::Pose2 last_odometry_;
   std::uint32_t update_index_ = 0;
   std::size_t ml_slot_ = 0;
+  TrajectoryNodeHandle estimate_node_;  // retained
   FilterCounters counters_;
 };
 

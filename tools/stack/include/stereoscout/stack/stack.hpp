@@ -14,8 +14,10 @@
 // waits for the first odometry reading at or after the pair's time, interpolates the
 // odometry pose to that time, runs the vision front end (landmarks and the 2.5D scan) and the
 // particle filter, and stores the scan for the just-in-time grid; the grid roll-up brings the
-// ML particle's grid forward and classifies it for the explorer; the replan and drive tasks
-// step the explorer with the ML pose dead-reckoned forward by the odometry since the update.
+// estimate's grid forward (the particle the stack follows: the ML particle, or with
+// filter.estimate_lineage_margin the one that keeps the lineage) and classifies it for the
+// explorer; the replan and drive tasks step the explorer with the estimate's pose
+// dead-reckoned forward by the odometry since the update.
 //
 // Everything the stack consumes goes to the sensor log in the order it was read (one
 // ordered staging queue drained by the logging task), so that a replay sees each record at
@@ -151,7 +153,7 @@ class Stack {
   const core::FixedVector<UpdateRecord>& update_records() const { return update_records_; }
   const core::FixedVector<core::Pose2>& odometry_path() const { return odometry_path_; }
   Localization localization() const { return options_.localization; }
-  // Where the stack believes the robot is now (ML pose moved on by the odometry since).
+  // Where the stack believes the robot is now (the estimate's pose moved on by the odometry since).
   core::Pose2 current_pose() const;
   std::size_t landmark_count() const;
 
@@ -207,8 +209,8 @@ class Stack {
   core::DepthScan scan_;
   std::vector<Eigen::Vector2d> seen_obstacles_;  // sized once: the last scan's obstacles at camera height, map frame
   explore::SeenObstacles seen_;                    // the used part of it
-  std::vector<occupancy::CellState> cells_;  // the ML grid classified, the explorer's view
-  std::vector<std::uint8_t> in_view_;        // the ML grid's in-view marks, same layout
+  std::vector<occupancy::CellState> cells_;  // the estimate's grid classified, the explorer's view
+  std::vector<std::uint8_t> in_view_;        // its in-view marks, same layout
   explore::GridView view_;
 
   // Sensors.
@@ -225,7 +227,7 @@ class Stack {
   double pan_rad_ = 0.0;             // pan angle of the newest kept pair
 
   // Estimate.
-  core::Pose2 pose_at_update_;       // ML pose at the last update
+  core::Pose2 pose_at_update_;       // the estimate's pose at the last update
   core::Pose2 odometry_at_update_;   // odometry pose (interpolated) at the last update
   bool rollup_due_ = false;
   bool grid_changed_ = false;

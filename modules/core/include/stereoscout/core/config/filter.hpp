@@ -20,6 +20,7 @@ struct FilterConfig {
   int estimates_per_landmark = 4;
   int max_observations_per_update = 1000;
   int export_min_observations = 4;
+  double estimate_lineage_margin = 0.0;
 };
 
 inline void describe(ConfigVisitor& v, FilterConfig& c) {
@@ -39,6 +40,7 @@ inline void describe(ConfigVisitor& v, FilterConfig& c) {
   v.integer_field("estimates_per_landmark", c.estimates_per_landmark, {1, 4, "", "Spatially distinct estimates one landmark identity may hold (paper Fig. 1); further distinct sightings are refused and counted."});
   v.integer_field("max_observations_per_update", c.max_observations_per_update, {1, 100000, "", "Landmark observations one update takes; more are dropped and counted."});
   v.integer_field("export_min_observations", c.export_min_observations, {1, 1000000, "", "An estimate goes into landmarks.ply once it has fused this many observations (4: seen more than 3 times)."});
+  v.number("estimate_lineage_margin", c.estimate_lineage_margin, {0.0, 100.0, "", "The particle the grid and the explorer follow (the estimate) stays on the lineage it followed while a particle descending from it has a log-weight within this of the best; otherwise, and at 0, it is the ML particle (paper V). The ML particle after a resampling is the one whose single update was likeliest, often of another lineage a few centimetres and a degree away, and the grid follows it: a wall held, then a gap. Counted either way in report.json's filter.estimate_lineage_switches."});
   v.require(c.particles <= c.particle_capacity, "particles", "must not exceed particle_capacity");
   v.end_section();
 }
