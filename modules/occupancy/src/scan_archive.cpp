@@ -31,14 +31,8 @@ void ScanArchive::release() {
   last_node_ = {};
 }
 
-slam::TrajectoryNodeHandle ScanArchive::lineage_node(slam::TrajectoryNodeHandle node, std::uint32_t update) const {
-  while (node && tree_.get(node).update_index > update) node = tree_.parent(node);
-  if (node && tree_.get(node).update_index == update) return node;
-  return {};
-}
-
 bool ScanArchive::on_lineage(slam::TrajectoryNodeHandle node) const {
-  return empty() || lineage_node(node, last_update_index_) == last_node_;
+  return empty() || tree_.ancestor_at(node, last_update_index_) == last_node_;
 }
 
 void ScanArchive::keep_leaving_scan(const ScanHistory& scans, std::uint32_t next_update_index,
@@ -47,7 +41,7 @@ void ScanArchive::keep_leaving_scan(const ScanHistory& scans, std::uint32_t next
   const auto leaving = static_cast<std::uint32_t>(next_update_index - scans.capacity());
   ScanView scan;
   if (scans.find(leaving, scan) != ScanLookup::found) return;
-  const slam::TrajectoryNodeHandle node = lineage_node(ml_node, leaving);
+  const slam::TrajectoryNodeHandle node = tree_.ancestor_at(ml_node, leaving);
   if (!node) {
     ++stats_.scans_off_lineage;
     return;
@@ -58,7 +52,7 @@ void ScanArchive::keep_leaving_scan(const ScanHistory& scans, std::uint32_t next
 }
 
 void ScanArchive::remember(slam::TrajectoryNodeHandle node) {
-  if (last_node_ && lineage_node(node, last_update_index_) != last_node_) ++stats_.lineage_switches;
+  if (last_node_ && tree_.ancestor_at(node, last_update_index_) != last_node_) ++stats_.lineage_switches;
   tree_.retain(node);
   release();
   last_node_ = node;

@@ -262,7 +262,7 @@ void ParticleFilter::follow_estimate() {
     for (std::size_t slot = 0; slot < particles_->size(); ++slot) {
       const Particle& p = (*particles_)[slot];
       if ((best_descendant == none || p.log_weight > (*particles_)[best_descendant].log_weight) &&
-          descends_from(p.trajectory, estimate_node_)) {
+          trajectory_.descends_from(p.trajectory, estimate_node_)) {
         best_descendant = slot;
       }
     }
@@ -271,21 +271,13 @@ void ParticleFilter::follow_estimate() {
     }
   }
   const TrajectoryNodeHandle node = (*particles_)[chosen].trajectory;
-  if (estimate_node_ && !descends_from(node, estimate_node_)) {
+  if (estimate_node_ && !trajectory_.descends_from(node, estimate_node_)) {
     const std::uint64_t depth = depth_to_common_ancestor(node, estimate_node_);
     ++counters_.estimate_lineage_switches;
     counters_.estimate_switch_depth_sum += depth;
     counters_.estimate_switch_depth_max = std::max(counters_.estimate_switch_depth_max, depth);
   }
   set_estimate(node);
-}
-
-bool ParticleFilter::descends_from(TrajectoryNodeHandle node, TrajectoryNodeHandle ancestor) const {
-  const std::uint32_t ancestor_index = trajectory_.get(ancestor).update_index;
-  while (node && trajectory_.get(node).update_index > ancestor_index) {
-    node = trajectory_.parent(node);
-  }
-  return node == ancestor;
 }
 
 std::uint32_t ParticleFilter::depth_to_common_ancestor(TrajectoryNodeHandle newer, TrajectoryNodeHandle older) const {

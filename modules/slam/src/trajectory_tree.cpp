@@ -16,6 +16,11 @@ TrajectoryNodeHandle TrajectoryTree::add(TrajectoryNodeHandle parent, const core
   return handle;
 }
 
+TrajectoryNodeHandle TrajectoryTree::ancestor_at(TrajectoryNodeHandle node, std::uint32_t update_index) const {
+  while (node && get(node).update_index > update_index) node = parent(node);
+  return node && get(node).update_index == update_index ? node : TrajectoryNodeHandle{};
+}
+
 void TrajectoryTree::release(TrajectoryNodeHandle node) {
   // Iterative, not recursive: a lineage can be thousands of updates long.
   while (node) {

@@ -332,6 +332,24 @@ TEST(TrajectoryTree, ANodeLivesWhileADescendantOrARetainerHoldsIt) {
   EXPECT_EQ(freed.count, 1);
 }
 
+TEST(TrajectoryTree, AncestorAtFindsTheNodeOfAnUpdateOnTheLineageOnly) {
+  TrajectoryTree tree(10);
+  const TrajectoryNodeHandle root = tree.add({}, {}, 0, 0);
+  const TrajectoryNodeHandle a1 = tree.add(root, {}, 1, 1);
+  const TrajectoryNodeHandle a3 = tree.add(a1, {}, 3, 3);  // update 2 refused on this lineage
+  const TrajectoryNodeHandle b1 = tree.add(root, {}, 1, 1);
+  EXPECT_EQ(tree.ancestor_at(a3, 3), a3);
+  EXPECT_EQ(tree.ancestor_at(a3, 1), a1);
+  EXPECT_EQ(tree.ancestor_at(a3, 0), root);
+  EXPECT_FALSE(tree.ancestor_at(a3, 2));
+  EXPECT_FALSE(tree.ancestor_at(a1, 3));  // no node of a later update above it
+  EXPECT_TRUE(tree.descends_from(a3, a1));
+  EXPECT_TRUE(tree.descends_from(a3, a3));
+  EXPECT_FALSE(tree.descends_from(a3, b1));
+  EXPECT_FALSE(tree.descends_from(a1, a3));
+  EXPECT_FALSE(tree.descends_from(a3, {}));
+}
+
 TEST(ParticleFilter, FullPoolsDegradeAndAreCounted) {
   core::FilterConfig config = small_config(10);
   config.landmark_estimate_capacity = 25;

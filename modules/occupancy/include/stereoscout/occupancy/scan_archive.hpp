@@ -84,8 +84,6 @@ class ScanArchive {
  private:
   static constexpr std::uint32_t kNoTile = 0xFFFFFFFFU;
 
-  // The node of ml_node's lineage with update_index `update`, or null.
-  slam::TrajectoryNodeHandle lineage_node(slam::TrajectoryNodeHandle ml_node, std::uint32_t update) const;
   void remember(slam::TrajectoryNodeHandle node);
   void insert(const ScanView& scan, const core::Pose2& pose);
   // The tile at lattice (column, row), taken from the pool if new; null when the pool is empty.

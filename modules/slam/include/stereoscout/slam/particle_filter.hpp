@@ -135,7 +135,6 @@ class ParticleFilter {
   std::size_t best_slot() const;
   // Sets estimate_node_ from this update's nodes and weights, and counts a change of lineage.
   void follow_estimate();
-  bool descends_from(TrajectoryNodeHandle node, TrajectoryNodeHandle ancestor) const;
   // Updates from `older`'s back to the newest node both descend from.
   std::uint32_t depth_to_common_ancestor(TrajectoryNodeHandle newer, TrajectoryNodeHandle older) const;
   void set_estimate(TrajectoryNodeHandle node);

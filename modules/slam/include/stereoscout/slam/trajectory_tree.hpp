@@ -55,6 +55,13 @@ class TrajectoryTree {
 
   const TrajectoryNode& get(TrajectoryNodeHandle node) const { return nodes_.get(node); }
   TrajectoryNodeHandle parent(TrajectoryNodeHandle node) const { return nodes_.get(node).parent; }
+  // The node of `node`'s lineage made by update `update_index` (`node` itself if it is that
+  // update's); null when the lineage has none (a refused update, or it starts later).
+  TrajectoryNodeHandle ancestor_at(TrajectoryNodeHandle node, std::uint32_t update_index) const;
+  // Whether `node` is `ancestor` or descends from it.
+  bool descends_from(TrajectoryNodeHandle node, TrajectoryNodeHandle ancestor) const {
+    return ancestor && ancestor_at(node, get(ancestor).update_index) == ancestor;
+  }
   std::uint32_t use_count(TrajectoryNodeHandle node) const { return nodes_.use_count(node); }
   bool is_live(TrajectoryNodeHandle node) const { return nodes_.is_live(node); }
   void set_user_slot(TrajectoryNodeHandle node, std::uint32_t slot) { nodes_.get(node).user_slot = slot; }
