@@ -73,7 +73,8 @@ ExploreGtResult run_explore_gt(const core::SystemConfig& config, const host_sim:
   core::DepthScan scan;
   scanner.allocate(scan);
   std::vector<Eigen::Vector2d> seen_points(static_cast<std::size_t>(config.camera.width_px));
-  explore::SeenObstacles seen{seen_points.data(), 0, 0.0};
+  explore::SeenObstacles seen;
+  seen.points = seen_points.data();
   cv::Mat left(config.camera.height_px, config.camera.width_px, CV_8UC1);
   cv::Mat right(config.camera.height_px, config.camera.width_px, CV_8UC1);
   cv::Mat depth(config.camera.height_px, config.camera.width_px, CV_32FC1);
@@ -115,6 +116,8 @@ ExploreGtResult run_explore_gt(const core::SystemConfig& config, const host_sim:
       grid.insert(scan, pose);
       seen.count = explore::seen_obstacles_from_scan(scan, pose, seen_points.data(), seen_points.size());
       seen.time_s = simulator.time_s();
+      seen.scan = &scan;
+      seen.odometry = pose;  // ground truth here stands for odometry too
       occupancy::classify_cells(grid, thresholds, cells.data(), in_view.data());
       last_update_pose = pose;
       last_update_camera_heading = camera_heading;
@@ -129,6 +132,7 @@ ExploreGtResult run_explore_gt(const core::SystemConfig& config, const host_sim:
     explore::ExploreInput input;
     input.time_s = simulator.time_s();
     input.pose = pose;
+    input.odometry = pose;
     input.pan_rad = simulator.pan_rad();
     input.grid = view;
     input.seen = seen;

@@ -72,6 +72,7 @@ Explorer::Explorer(const ExploreParams& params)
               params.explore.failed_goal_cooldown_s),
       stall_(params.explore),
       contacts_(params.explore, params.max_width, params.max_height),
+      recent_(params.explore, params.max_width, params.max_height),
       traces_(params.explore, params.max_width, params.max_height),
       trail_(params.explore),
       journal_(static_cast<std::size_t>(params.explore.event_memory)),
@@ -95,6 +96,7 @@ void Explorer::note(ExploreEventKind kind, const ExploreInput& input) {
 ExploreOutput Explorer::step(const ExploreInput& input) {
   if (!started_) start(input);
   trail_.record(position_of(input.pose));
+  recent_.observe(input.seen);
   stalled_ = stall_.stalled(input.time_s, position_of(input.pose));
   ExploreOutput output;
   if (input.emergency_stop) {
@@ -159,7 +161,7 @@ void Explorer::rebuild_map(const ExploreInput& input) {
   // that no later view covered splits the corridor it started in (the office: the way out of
   // the first office led through it).
   const Eigen::Vector2d extra = position_of(start_pose_);
-  planning_grid_ = contacts_.stamp(input.grid, input.time_s);
+  planning_grid_ = recent_.stamp(contacts_.stamp(input.grid, input.time_s), input.pose, input.odometry, input.time_s);
   planning_on_copy_ = planning_grid_.cells != input.grid.cells;
   // While crossing traces, plans cross a person's old traces; the safety check (on
   // planning_grid_) never does.

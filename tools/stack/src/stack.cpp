@@ -386,6 +386,8 @@ void Stack::keep_seen_obstacles(std::int64_t frame_ns) {
   seen_.points = seen_obstacles_.data();
   seen_.count = explore::seen_obstacles_from_scan(scan_, pose_at_update_, seen_obstacles_.data(), seen_obstacles_.size());
   seen_.time_s = static_cast<double>(frame_ns - start_ns_) * 1e-9;
+  seen_.scan = &scan_;
+  seen_.odometry = odometry_at_update_;
 }
 
 core::Status Stack::grid_rollup() {
@@ -412,6 +414,7 @@ core::Status Stack::step_explorer(bool grid_updated) {
   explore::ExploreInput input;
   input.time_s = time_s();
   input.pose = current_pose();
+  input.odometry = odometry_history_.empty() ? odometry_at_update_ : odometry_history_.newest().pose;
   input.pan_rad = pan_rad_;
   input.grid = view_;
   input.seen = seen_;

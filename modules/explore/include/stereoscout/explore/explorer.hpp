@@ -47,6 +47,7 @@
 #include "stereoscout/explore/navigation_map.hpp"
 #include "stereoscout/explore/path_follower.hpp"
 #include "stereoscout/explore/path_planner.hpp"
+#include "stereoscout/explore/recent_obstacles.hpp"
 #include "stereoscout/explore/seen_obstacles.hpp"
 #include "stereoscout/explore/trace_memory.hpp"
 #include "stereoscout/explore/trail_memory.hpp"
@@ -56,6 +57,7 @@ namespace stereoscout::explore {
 struct ExploreInput {
   double time_s = 0.0;
   core::Pose2 pose;       // map frame: the ML particle's pose (ground truth in simulation tests)
+  core::Pose2 odometry;   // the raw odometry pose now (any fixed frame; seen.odometry's)
   double pan_rad = 0.0;   // current angle of the pan unit
   GridView grid;          // current grid; must stay valid during the call only
   SeenObstacles seen;     // the latest scan's obstacles at camera height (scan_guard_min_points)
@@ -119,6 +121,7 @@ class Explorer {
   const NavigationMap& navigation_map() const { return map_; }
   const GoalValue& goal_value() const { return goal_value_; }
   const ContactMemory& contacts() const { return contacts_; }
+  const RecentObstacles& recent_obstacles() const { return recent_; }
   const ExploreJournal& journal() const { return journal_; }
 
  private:
@@ -173,11 +176,12 @@ class Explorer {
   GoalMemory memory_;
   StallDetector stall_;
   ContactMemory contacts_;
+  RecentObstacles recent_;
   TraceMemory traces_;
   TrailMemory trail_;
   ExploreJournal journal_;
-  GridView planning_grid_;  // the input grid with the contact cells occupied (last rebuild): the safety check's
-  bool planning_on_copy_ = false;  // planning_grid_ is the contact memory's stamped copy
+  GridView planning_grid_;  // the input grid with the contact and recent obstacle cells occupied (last rebuild): the safety check's
+  bool planning_on_copy_ = false;  // planning_grid_ is a stamped copy (contacts, recent obstacles)
   bool crossing_traces_ = false;   // the navigation map holds a person's old traces free
   bool following_trail_ = false;   // ... and the robot's own path open
   std::size_t trail_cells_opened_ = 0;  // by the last rebuild

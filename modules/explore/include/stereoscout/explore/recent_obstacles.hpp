@@ -1,0 +1,109 @@
+#pragma once
+// What the recent scans saw standing at the camera's height, kept in the odometry frame: a
+// local obstacle layer that does not move with the map (explore.recent_obstacle_s).
+//
+// The grid the explorer plans on is the estimate particle's, rolled up along that particle's
+// trajectory; when the estimate moves to another lineage the grid near the robot is re-rolled
+// from other poses, and a jamb or a stretch of wall the robot saw a moment ago can be shifted
+// or erased in it (docs/results.md, office seed 6: a door held 0.3 m east of the truth, a 1 m
+// gap in a wall). Wheel odometry drifts centimetres over a few metres, so obstacles kept in its
+// frame stay where they were relative to the robot while it passes them, out of the camera's
+// view beside it or nearer than the matcher measures in front of it. stamp() marks their cells
+// occupied in the grid the explorer plans on and checks its moves against, placed from the
+// robot's current pose.
+//
+// A point is forgotten when a later scan saw past it (the floor or a surface beyond it, in
+// every column around its bearing, farther than the matcher's near limit): a person who walked
+// on, a stray match. Otherwise after recent_obstacle_s. Buffers are allocated by the
+// constructor; observe() and stamp() allocate nothing.
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+
+#include <Eigen/Core>
+
+#include "stereoscout/core/config/explore.hpp"
+#include "stereoscout/core/geometry.hpp"
+#include "stereoscout/explore/grid_view.hpp"
+#include "stereoscout/explore/seen_obstacles.hpp"
+
+namespace stereoscout::explore {
+
+class RecentObstacles {
+ public:
+  // Points kept from one scan's obstacle columns are at least this far apart (adjacent columns
+  // of a wall 1.5 m away are 4 mm apart; a tenth-metre grid cell needs a few, not forty).
+  static constexpr double kPointSpacing_m = 0.03;
+  // Bearings are compared in bins of this width (a 640-pixel image at 400 px focal length has
+  // 0.14 degrees a column: seven columns a bin).
+  static constexpr int kBearingBins = 360;
+  // A later scan sees past a point when it measured the floor or a surface this much beyond it
+  // (the scan's same-surface depth), plus twice a free column's end-range sigma.
+  static constexpr double kSeenPastMargin_m = 0.15;
+
+  // max_width x max_height: the largest grid stamp() must copy.
+  RecentObstacles(const core::ExploreConfig& config, int max_width, int max_height);
+
+  bool enabled() const { return keep_s_ > 0.0; }
+
+  // A new scan (seen.scan, taken at seen.odometry; a scan already observed is ignored):
+  // forgets the kept points it saw past, then keeps its obstacle columns at the camera's
+  // height within recent_obstacle_range_m of the camera.
+  void observe(const SeenObstacles& seen);
+  // Forgets points older than recent_obstacle_s, then returns `grid` with the cells holding
+  // recent_obstacle_min_points kept points occupied, the points placed from `pose` (the
+  // robot's map pose now) by the odometry since (`odometry`: the odometry pose now): a copy in
+  // the memory's own buffer, or `grid` itself when no cell changes (or it is larger than the
+  // buffer, counted). Valid until the next call.
+  GridView stamp(const GridView& grid, const core::Pose2& pose, const core::Pose2& odometry, double time_s);
+
+  std::size_t held() const { return size_; }
+  std::uint64_t kept() const { return kept_; }
+  std::uint64_t seen_past() const { return seen_past_; }
+  std::uint64_t expired() const { return expired_; }
+  std::uint64_t dropped_full() const { return dropped_full_; }
+  std::uint64_t cells_stamped() const { return cells_stamped_; }  // over all stamp() calls
+  std::uint64_t grid_too_large() const { return grid_too_large_; }
+
+ private:
+  struct Point {
+    Eigen::Vector2d odometry_xy = Eigen::Vector2d::Zero();
+    double time_s = 0.0;
+  };
+  // What one scan saw past, per bearing bin from its camera origin (robot frame).
+  struct BearingBin {
+    float seen_past_m = 0.0F;     // the nearest range the bin's columns measured anything at
+    float measurable_m = 0.0F;    // the farthest of their near limits
+    bool measured = false;
+  };
+
+  void forget_seen_past(const core::DepthScan& scan, const core::Pose2& odometry);
+  void keep_columns(const core::DepthScan& scan, const core::Pose2& odometry, double time_s);
+  void remove_if_marked();
+  void drop_oldest(std::size_t count);
+  static int bin_of(double bearing_rad);
+
+  double keep_s_ = 0.0;
+  double range_m_ = 0.0;
+  int min_points_ = 1;
+  std::size_t capacity_ = 0;
+  std::unique_ptr<Point[]> points_;  // oldest first
+  std::unique_ptr<bool[]> forget_;
+  std::size_t size_ = 0;
+  BearingBin bins_[kBearingBins];
+  double last_scan_time_s_ = -1.0;
+  // stamp(): per-cell counts, reset through the list of cells touched.
+  std::size_t cell_capacity_ = 0;
+  std::unique_ptr<std::uint8_t[]> counts_;
+  std::unique_ptr<std::uint8_t[]> cells_;
+  std::unique_ptr<std::size_t[]> touched_;
+  std::uint64_t kept_ = 0;
+  std::uint64_t seen_past_ = 0;
+  std::uint64_t expired_ = 0;
+  std::uint64_t dropped_full_ = 0;
+  std::uint64_t cells_stamped_ = 0;
+  std::uint64_t grid_too_large_ = 0;
+};
+
+}  // namespace stereoscout::explore

@@ -1,0 +1,147 @@
+#include "stereoscout/explore/recent_obstacles.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace stereoscout::explore {
+namespace {
+
+constexpr std::uint8_t kMaxCount = 255;
+
+std::size_t cells_of(int width, int height) {
+  return static_cast<std::size_t>(std::max(width, 0)) * static_cast<std::size_t>(std::max(height, 0));
+}
+
+}  // namespace
+
+RecentObstacles::RecentObstacles(const core::ExploreConfig& config, int max_width, int max_height)
+    : keep_s_(config.recent_obstacle_s),
+      range_m_(config.recent_obstacle_range_m),
+      min_points_(std::max(1, config.recent_obstacle_min_points)),
+      capacity_(config.recent_obstacle_s > 0.0 ? static_cast<std::size_t>(std::max(1, config.recent_obstacle_capacity)) : 0),
+      points_(new Point[capacity_ == 0 ? 1 : capacity_]),
+      forget_(new bool[capacity_ == 0 ? 1 : capacity_]()),
+      cell_capacity_(capacity_ == 0 ? 0 : cells_of(max_width, max_height)),
+      counts_(new std::uint8_t[cell_capacity_ == 0 ? 1 : cell_capacity_]()),
+      cells_(new std::uint8_t[cell_capacity_ == 0 ? 1 : cell_capacity_]),
+      touched_(new std::size_t[capacity_ == 0 ? 1 : capacity_]) {}
+
+int RecentObstacles::bin_of(double bearing_rad) {
+  const double turns = (bearing_rad + core::kPi) / (2.0 * core::kPi);
+  const int bin = static_cast<int>(std::floor(turns * kBearingBins));
+  return std::clamp(bin, 0, kBearingBins - 1);
+}
+
+void RecentObstacles::observe(const SeenObstacles& seen) {
+  if (!enabled() || seen.scan == nullptr || seen.time_s <= last_scan_time_s_) return;
+  last_scan_time_s_ = seen.time_s;
+  forget_seen_past(*seen.scan, seen.odometry);
+  keep_columns(*seen.scan, seen.odometry, seen.time_s);
+}
+
+// Per bearing bin the nearest range any of its columns measured (an obstacle's, or a free
+// column's end less its uncertainty): a kept point nearer than that by kSeenPastMargin_m, and
+// beyond every column's near limit, was seen past.
+void RecentObstacles::forget_seen_past(const core::DepthScan& scan, const core::Pose2& odometry) {
+  if (size_ == 0) return;
+  for (BearingBin& bin : bins_) bin = BearingBin{};
+  for (const core::DepthScanColumn& column : scan.columns) {
+    if (column.kind == core::DepthScanColumn::Kind::invalid) continue;
+    const Eigen::Vector2d ray = Eigen::Vector2d(column.x_robot_m, column.y_robot_m) - scan.origin_robot;
+    const double uncertainty = column.kind == core::DepthScanColumn::Kind::free ? 2.0 * column.end_range_sigma_m : 0.0;
+    const float seen_m = static_cast<float>(ray.norm() - uncertainty);
+    BearingBin& bin = bins_[bin_of(std::atan2(ray.y(), ray.x()))];
+    bin.seen_past_m = bin.measured ? std::min(bin.seen_past_m, seen_m) : seen_m;
+    bin.measurable_m = std::max(bin.measurable_m, column.measurable_from_m);
+    bin.measured = true;
+  }
+  const core::Pose2 robot_from_odometry = odometry.inverse();
+  bool any = false;
+  for (std::size_t i = 0; i < size_; ++i) {
+    const Eigen::Vector2d ray = robot_from_odometry.transform_point(points_[i].odometry_xy) - scan.origin_robot;
+    const BearingBin& bin = bins_[bin_of(std::atan2(ray.y(), ray.x()))];
+    const double range = ray.norm();
+    forget_[i] = bin.measured && range >= bin.measurable_m && bin.seen_past_m > range + kSeenPastMargin_m;
+    if (forget_[i]) {
+      ++seen_past_;
+      any = true;
+    }
+  }
+  if (any) remove_if_marked();
+}
+
+void RecentObstacles::remove_if_marked() {
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < size_; ++i) {
+    if (forget_[i]) continue;
+    points_[kept++] = points_[i];
+  }
+  std::fill(forget_.get(), forget_.get() + size_, false);
+  size_ = kept;
+}
+
+void RecentObstacles::drop_oldest(std::size_t count) {
+  std::copy(points_.get() + count, points_.get() + size_, points_.get());
+  size_ -= count;
+}
+
+void RecentObstacles::keep_columns(const core::DepthScan& scan, const core::Pose2& odometry, double time_s) {
+  Eigen::Vector2d last = Eigen::Vector2d::Constant(1e9);
+  for (const core::DepthScanColumn& column : scan.columns) {
+    if (column.kind != core::DepthScanColumn::Kind::obstacle || !column.obstacle_at_camera_height) continue;
+    const Eigen::Vector2d robot_xy(column.x_robot_m, column.y_robot_m);
+    if ((robot_xy - scan.origin_robot).norm() > range_m_ || (robot_xy - last).norm() < kPointSpacing_m) continue;
+    last = robot_xy;
+    if (size_ == capacity_) {
+      // Full: the oldest quarter goes at once (one move, not one per point).
+      const std::size_t drop = std::max<std::size_t>(1, capacity_ / 4);
+      drop_oldest(drop);
+      dropped_full_ += drop;
+    }
+    points_[size_++] = Point{odometry.transform_point(robot_xy), time_s};
+    ++kept_;
+  }
+}
+
+GridView RecentObstacles::stamp(const GridView& grid, const core::Pose2& pose, const core::Pose2& odometry,
+                                double time_s) {
+  if (!enabled()) return grid;
+  std::size_t first = 0;
+  while (first < size_ && time_s - points_[first].time_s > keep_s_) ++first;
+  drop_oldest(first);
+  expired_ += first;
+  if (size_ == 0) return grid;
+  if (cells_of(grid.width, grid.height) > cell_capacity_) {
+    ++grid_too_large_;
+    return grid;
+  }
+  const core::Pose2 map_from_odometry = pose.compose(odometry.inverse());
+  std::size_t touched = 0;
+  for (std::size_t i = 0; i < size_; ++i) {
+    const Eigen::Vector2i cell = grid.cell_of(map_from_odometry.transform_point(points_[i].odometry_xy));
+    if (!grid.contains(cell.x(), cell.y())) continue;
+    const std::size_t index = grid.index(cell.x(), cell.y());
+    if (counts_[index] == 0) touched_[touched++] = index;
+    if (counts_[index] < kMaxCount) ++counts_[index];
+  }
+  bool copied = false;
+  for (std::size_t k = 0; k < touched; ++k) {
+    const std::size_t index = touched_[k];
+    const bool counts = counts_[index] >= min_points_;
+    counts_[index] = 0;
+    if (!counts || grid.cells[index] == static_cast<std::uint8_t>(CellState::occupied)) continue;
+    if (!copied) {
+      std::memcpy(cells_.get(), grid.cells, cells_of(grid.width, grid.height));
+      copied = true;
+    }
+    cells_[index] = static_cast<std::uint8_t>(CellState::occupied);
+    ++cells_stamped_;
+  }
+  if (!copied) return grid;
+  GridView stamped = grid;
+  stamped.cells = cells_.get();
+  return stamped;
+}
+
+}  // namespace stereoscout::explore

@@ -1,0 +1,196 @@
+// The recent obstacle layer: what the scans saw standing at the camera's height, kept in the
+// odometry frame and stamped into the planning grid from the robot's current pose, forgotten
+// when a later scan sees past it or when it is old.
+#include <gtest/gtest.h>
+
+#include "stereoscout/core/allocation_counter.hpp"
+#include "stereoscout/explore/recent_obstacles.hpp"
+#include "test_grid.hpp"
+
+namespace stereoscout::explore {
+namespace {
+
+using testing::TestGrid;
+
+core::ExploreConfig recent_config() {
+  core::ExploreConfig config;
+  config.recent_obstacle_s = 30.0;
+  return config;
+}
+
+core::DepthScanColumn column(double x, double y, core::DepthScanColumn::Kind kind, bool at_camera_height = true,
+                             double measurable_from_m = 0.0) {
+  core::DepthScanColumn c;
+  c.x_robot_m = static_cast<float>(x);
+  c.y_robot_m = static_cast<float>(y);
+  c.kind = kind;
+  c.obstacle_at_camera_height = kind == core::DepthScanColumn::Kind::obstacle && at_camera_height;
+  c.measurable_from_m = static_cast<float>(measurable_from_m);
+  return c;
+}
+
+// A surface straight ahead of the robot, `ahead_m` from its centre, `width_m` across, one
+// column every centimetre (the camera at the robot's centre).
+core::DepthScan wall_ahead(double ahead_m, double width_m, bool at_camera_height = true) {
+  core::DepthScan scan;
+  for (double y = -0.5 * width_m; y <= 0.5 * width_m + 1e-9; y += 0.01) {
+    scan.columns.push_back(column(ahead_m, y, core::DepthScanColumn::Kind::obstacle, at_camera_height));
+  }
+  return scan;
+}
+
+// Floor seen straight ahead out to `free_to_m` across the same bearings, nothing measured
+// nearer than `measurable_from_m`.
+core::DepthScan floor_ahead(double free_to_m, double width_m, double measurable_from_m) {
+  core::DepthScan scan;
+  for (double y = -0.5 * width_m; y <= 0.5 * width_m + 1e-9; y += 0.01) {
+    scan.columns.push_back(column(free_to_m, y * free_to_m, core::DepthScanColumn::Kind::free, false, measurable_from_m));
+  }
+  return scan;
+}
+
+SeenObstacles seen_at(const core::DepthScan& scan, const core::Pose2& odometry, double time_s) {
+  SeenObstacles seen;
+  seen.time_s = time_s;
+  seen.scan = &scan;
+  seen.odometry = odometry;
+  return seen;
+}
+
+bool occupied_at(const GridView& grid, const Eigen::Vector2d& point) {
+  const Eigen::Vector2i cell = grid.cell_of(point);
+  return grid.at(cell.x(), cell.y()) == CellState::occupied;
+}
+
+TEST(RecentObstacles, OffByDefaultTheGridIsTheInputGrid) {
+  RecentObstacles recent(core::ExploreConfig{}, 60, 60);
+  const TestGrid grid(60, 60, CellState::free);
+  const core::DepthScan scan = wall_ahead(1.0, 0.6);
+  recent.observe(seen_at(scan, core::Pose2{}, 1.0));
+  EXPECT_EQ(recent.stamp(grid.view(), core::Pose2{2.0, 3.0, 0.0}, core::Pose2{}, 1.0).cells, grid.view().cells);
+  EXPECT_EQ(recent.held(), 0U);
+}
+
+// The robot saw a jamb 1.05 m ahead, drove 0.8 m towards it by odometry (the jamb now beside or
+// too near to see), and meanwhile the estimate moved to another lineage whose pose is 0.3 m
+// off the first: the jamb is stamped 0.25 m ahead of the robot as it stands in the new pose,
+// not where the first lineage's pose put it.
+TEST(RecentObstacles, AnObstacleSeenAMomentAgoStaysWhereItIsRelativeToTheRobotWhenTheEstimateJumps) {
+  RecentObstacles recent(recent_config(), 60, 60);
+  const TestGrid grid(60, 60, CellState::free);
+  const core::DepthScan scan = wall_ahead(1.05, 0.2);
+  const core::Pose2 odometry_then{10.0, -4.0, 0.5};  // odometry's own frame: anywhere
+  recent.observe(seen_at(scan, odometry_then, 1.0));
+  EXPECT_GT(recent.held(), 3U);
+  const core::Pose2 odometry_now = odometry_then.compose(core::Pose2{0.8, 0.0, 0.0});
+  const core::Pose2 pose_now{2.0, 3.3, 0.0};  // the new lineage; the old one had (2.0, 3.0)
+  const GridView stamped = recent.stamp(grid.view(), pose_now, odometry_now, 8.0);
+  ASSERT_NE(stamped.cells, grid.view().cells);
+  EXPECT_TRUE(occupied_at(stamped, {2.25, 3.3}));
+  EXPECT_FALSE(occupied_at(stamped, {2.25, 3.0}));
+  EXPECT_FALSE(occupied_at(stamped, {1.95, 3.3}));
+  EXPECT_GT(recent.cells_stamped(), 0U);
+  // The input grid is untouched.
+  EXPECT_FALSE(occupied_at(grid.view(), {2.25, 3.3}));
+}
+
+TEST(RecentObstacles, ACellTheGridHoldsOccupiedAlreadyNeedsNoCopy) {
+  RecentObstacles recent(recent_config(), 60, 60);
+  TestGrid grid(60, 60, CellState::free);
+  grid.fill(29, 20, 31, 40, CellState::occupied);  // x 2.9-3.1 m: the wall as the grid holds it
+  const core::DepthScan scan = wall_ahead(1.0, 0.4);
+  recent.observe(seen_at(scan, core::Pose2{}, 1.0));
+  EXPECT_EQ(recent.stamp(grid.view(), core::Pose2{2.0, 3.0, 0.0}, core::Pose2{}, 1.0).cells, grid.view().cells);
+}
+
+TEST(RecentObstacles, ALaterScanThatSawPastAPointForgetsIt) {
+  RecentObstacles recent(recent_config(), 60, 60);
+  const TestGrid grid(60, 60, CellState::free);
+  const core::Pose2 pose{2.0, 3.0, 0.0};
+  const core::DepthScan person = wall_ahead(1.0, 0.4);
+  recent.observe(seen_at(person, core::Pose2{}, 1.0));
+  ASSERT_NE(recent.stamp(grid.view(), pose, core::Pose2{}, 1.0).cells, grid.view().cells);
+  // The person walked on: from the same place the floor is seen 3 m ahead on those bearings.
+  const core::DepthScan floor = floor_ahead(3.0, 0.5, 0.6);
+  recent.observe(seen_at(floor, core::Pose2{}, 2.0));
+  EXPECT_EQ(recent.held(), 0U);
+  EXPECT_GT(recent.seen_past(), 0U);
+  EXPECT_EQ(recent.stamp(grid.view(), pose, core::Pose2{}, 2.0).cells, grid.view().cells);
+}
+
+// Nearer than the matcher measures (a jamb 0.5 m ahead of a matcher whose near limit is
+// 0.63 m) a later scan says nothing about the point, nor does one that saw no farther than it.
+TEST(RecentObstacles, APointNearerThanALaterScanMeasuresOrAsFarAsItSawIsKept) {
+  RecentObstacles recent(recent_config(), 60, 60);
+  const core::DepthScan jamb = wall_ahead(1.0, 0.2);
+  recent.observe(seen_at(jamb, core::Pose2{}, 1.0));
+  const std::size_t held = recent.held();
+  const core::Pose2 half_a_metre_on{0.5, 0.0, 0.0};
+  const core::DepthScan floor = floor_ahead(3.0, 1.0, 0.63);
+  recent.observe(seen_at(floor, half_a_metre_on, 2.0));
+  EXPECT_EQ(recent.held(), held);
+  const core::DepthScan same_surface = wall_ahead(1.05, 0.4);  // the jamb again, 0.05 m deeper
+  recent.observe(seen_at(same_surface, core::Pose2{}, 3.0));
+  EXPECT_EQ(recent.seen_past(), 0U);
+  EXPECT_GT(recent.held(), held);
+}
+
+TEST(RecentObstacles, LowObstaclesAndFarSurfacesAreNotKept) {
+  RecentObstacles recent(recent_config(), 60, 60);
+  const core::DepthScan box = wall_ahead(1.0, 0.4, /*at_camera_height=*/false);
+  recent.observe(seen_at(box, core::Pose2{}, 1.0));
+  const core::DepthScan far_wall = wall_ahead(2.5, 0.4);  // beyond recent_obstacle_range_m (2 m)
+  recent.observe(seen_at(far_wall, core::Pose2{}, 2.0));
+  EXPECT_EQ(recent.held(), 0U);
+}
+
+TEST(RecentObstacles, PointsExpireAndAStrayPointMarksNoCell) {
+  core::ExploreConfig config = recent_config();
+  config.recent_obstacle_min_points = 2;
+  RecentObstacles recent(config, 60, 60);
+  const TestGrid grid(60, 60, CellState::free);
+  const core::Pose2 pose{2.0, 3.0, 0.0};
+  core::DepthScan stray;
+  stray.columns.push_back(column(1.0, 0.0, core::DepthScanColumn::Kind::obstacle));
+  recent.observe(seen_at(stray, core::Pose2{}, 1.0));
+  EXPECT_EQ(recent.held(), 1U);
+  EXPECT_EQ(recent.stamp(grid.view(), pose, core::Pose2{}, 1.0).cells, grid.view().cells);
+  const core::DepthScan wall = wall_ahead(1.0, 0.4);
+  recent.observe(seen_at(wall, core::Pose2{}, 2.0));
+  EXPECT_NE(recent.stamp(grid.view(), pose, core::Pose2{}, 31.5).cells, grid.view().cells);
+  EXPECT_EQ(recent.expired(), 1U);  // the stray point, 30.5 s old
+  EXPECT_EQ(recent.stamp(grid.view(), pose, core::Pose2{}, 32.5).cells, grid.view().cells);
+  EXPECT_EQ(recent.held(), 0U);
+}
+
+TEST(RecentObstacles, AScanIsObservedOnceAndAFullMemoryDropsItsOldest) {
+  core::ExploreConfig config = recent_config();
+  config.recent_obstacle_capacity = 50;
+  RecentObstacles recent(config, 60, 60);
+  const core::DepthScan wall = wall_ahead(1.0, 1.2);  // 31-41 points, 0.03-0.04 m apart
+  recent.observe(seen_at(wall, core::Pose2{}, 1.0));
+  const std::size_t one_scan = recent.held();
+  recent.observe(seen_at(wall, core::Pose2{}, 1.0));
+  EXPECT_EQ(recent.held(), one_scan);
+  recent.observe(seen_at(wall, core::Pose2{}, 2.0));
+  EXPECT_LT(one_scan, 50U);
+  EXPECT_LE(recent.held(), 50U);
+  EXPECT_GT(recent.dropped_full(), 0U);
+  EXPECT_EQ(recent.kept(), 2 * one_scan);
+}
+
+TEST(RecentObstacles, ObservingAndStampingAllocateNothing) {
+  RecentObstacles recent(recent_config(), 60, 60);
+  const TestGrid grid(60, 60, CellState::free);
+  const core::DepthScan wall = wall_ahead(1.0, 0.6);
+  const core::DepthScan floor = floor_ahead(3.0, 0.5, 0.6);
+  const core::AllocationScope scope;
+  for (int i = 0; i < 20; ++i) {
+    recent.observe(seen_at(i % 3 == 0 ? floor : wall, core::Pose2{}, 1.0 + i));
+    recent.stamp(grid.view(), core::Pose2{2.0, 3.0, 0.0}, core::Pose2{}, 1.0 + i);
+  }
+  EXPECT_EQ(scope.allocations(), 0U);
+}
+
+}  // namespace
+}  // namespace stereoscout::explore
