@@ -276,6 +276,62 @@ TEST(Explorer, KeepsMoreClearanceFromAnObstacleThatJustAppeared) {
   }
 }
 
+// A scan saw a surface at the camera's height 1 m ahead (a jamb) that the grid does not hold
+// (the estimate's lineage erased it). With recent_obstacle_s the plan keeps clear of it, and
+// when the estimate jumps 0.3 m sideways with no odometry motion, the surface moves with the
+// robot: it stays 1 m ahead of the pose the explorer now has.
+bool plan_clear_of(const Explorer& explorer, const Eigen::Vector2d& point, double radius_m) {
+  for (const Eigen::Vector2d& waypoint : explorer.plan().waypoints) {
+    if ((waypoint - point).norm() < radius_m) return false;
+  }
+  return true;
+}
+
+TEST(Explorer, PlansKeepClearOfWhatARecentScanSawWhereTheGridHoldsNothing) {
+  core::DepthScan scan;
+  for (double y = -0.3; y <= 0.3 + 1e-9; y += 0.01) {
+    core::DepthScanColumn column;
+    column.x_robot_m = 1.0F;
+    column.y_robot_m = static_cast<float>(y);
+    column.kind = core::DepthScanColumn::Kind::obstacle;
+    column.obstacle_at_camera_height = true;
+    scan.columns.push_back(column);
+  }
+  for (const double keep_s : {0.0, 30.0}) {
+    Corridor scene;
+    ExploreParams params = no_look_params(100, 60);
+    params.explore.recent_obstacle_s = keep_s;
+    Explorer explorer(params);
+    ExploreInput input = input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.0, true);
+    input.seen.scan = &scan;
+    input.seen.time_s = 0.0;
+    explorer.step(input);
+    ASSERT_EQ(explorer.state(), ExploreState::drive);
+    const double radius = params.robot_radius_m;
+    const bool clear = plan_clear_of(explorer, {2.5, 3.0}, radius);
+    if (keep_s == 0.0) {
+      EXPECT_FALSE(clear);  // straight through: the grid is all there is
+      continue;
+    }
+    EXPECT_TRUE(clear);
+    EXPECT_GT(explorer.recent_obstacles().cells_stamped(), 0U);
+    // The estimate jumps to (1.5, 3.3); odometry did not move.
+    input = input_at(scene.grid.view(), 1.5, 3.3, 0.0, 1.0, true);
+    input.seen.scan = &scan;
+    input.seen.time_s = 0.0;  // the same scan: not observed again
+    explorer.step(input);
+    const GridView& planned_on = explorer.navigation_map().grid();
+    const auto occupied = [&planned_on](double x, double y) {
+      const Eigen::Vector2i cell = planned_on.cell_of({x, y});
+      return planned_on.at(cell.x(), cell.y()) == CellState::occupied;
+    };
+    EXPECT_TRUE(occupied(2.55, 3.55));   // the surface's left end, 1 m ahead of the new pose
+    EXPECT_FALSE(occupied(2.55, 2.75));  // where its right end was from the old one
+    EXPECT_TRUE(plan_clear_of(explorer, {2.5, 3.3}, radius));
+    EXPECT_EQ(explorer.recent_obstacles().kept(), explorer.recent_obstacles().held());
+  }
+}
+
 TEST(Explorer, StopsBeforeAnOccupiedCellAheadEvenBeforeTheMapIsRebuilt) {
   Corridor scene;
   Explorer explorer(no_look_params(100, 60));
