@@ -104,6 +104,7 @@ Stack::Stack(const core::SystemConfig& config, const StackOptions& options, cons
   vision_ = std::make_unique<vision::VisionFrontEnd>(config.vision, config.robot,
                                                      vision::calibration_from_config(config.camera), mount);
   vision_->allocate_scan(scan_);
+  vision_->allocate_scan(seen_scan_);
   filter_ = std::make_unique<slam::ParticleFilter>(filter_config_for(config.filter, options.localization), mount,
                                                    static_cast<std::uint64_t>(config.run.seed));
   capture_frame_.allocate(config.camera.width_px, config.camera.height_px);
@@ -386,7 +387,8 @@ void Stack::keep_seen_obstacles(std::int64_t frame_ns) {
   seen_.points = seen_obstacles_.data();
   seen_.count = explore::seen_obstacles_from_scan(scan_, pose_at_update_, seen_obstacles_.data(), seen_obstacles_.size());
   seen_.time_s = static_cast<double>(frame_ns - start_ns_) * 1e-9;
-  seen_.scan = &scan_;
+  seen_scan_ = scan_;  // same column count: no allocation
+  seen_.scan = &seen_scan_;
   seen_.odometry = odometry_at_update_;
 }
 

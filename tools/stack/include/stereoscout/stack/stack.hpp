@@ -209,6 +209,7 @@ class Stack {
   core::DepthScan scan_;
   std::vector<Eigen::Vector2d> seen_obstacles_;  // sized once: the last scan's obstacles at camera height, map frame
   explore::SeenObstacles seen_;                    // the used part of it
+  core::DepthScan seen_scan_;  // the last update's scan, for seen_ (scan_ is overwritten by a refused update too)
   std::vector<occupancy::CellState> cells_;  // the estimate's grid classified, the explorer's view
   std::vector<std::uint8_t> in_view_;        // its in-view marks, same layout
   explore::GridView view_;
