@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 
 namespace stereoscout::explore {
 namespace {
@@ -125,23 +124,16 @@ GridView RecentObstacles::stamp(const GridView& grid, const core::Pose2& pose, c
     if (counts_[index] == 0) touched_[touched++] = index;
     if (counts_[index] < kMaxCount) ++counts_[index];
   }
-  bool copied = false;
+  GridEdit stamped(grid, cells_.get());
   for (std::size_t k = 0; k < touched; ++k) {
     const std::size_t index = touched_[k];
     const bool counts = counts_[index] >= min_points_;
     counts_[index] = 0;
     if (!counts || grid.cells[index] == static_cast<std::uint8_t>(CellState::occupied)) continue;
-    if (!copied) {
-      std::memcpy(cells_.get(), grid.cells, cells_of(grid.width, grid.height));
-      copied = true;
-    }
-    cells_[index] = static_cast<std::uint8_t>(CellState::occupied);
+    stamped.set(index, CellState::occupied);
     ++cells_stamped_;
   }
-  if (!copied) return grid;
-  GridView stamped = grid;
-  stamped.cells = cells_.get();
-  return stamped;
+  return stamped.result();
 }
 
 }  // namespace stereoscout::explore

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 
 #include "stereoscout/core/geometry.hpp"
@@ -131,23 +130,16 @@ GridView TraceMemory::forget_traces(const GridView& grid, double time_s) {
   forgotten_last_ = 0;
   if (forget_after_s_ <= 0.0 || !same_geometry(grid)) return grid;
   const std::size_t count = static_cast<std::size_t>(grid.width) * static_cast<std::size_t>(grid.height);
-  bool copied = false;
+  GridEdit forgotten(grid, forgotten_.data());
   for (std::size_t i = 0; i < count; ++i) {
     if (!trace(i, time_s) || grid.cells[i] != static_cast<std::uint8_t>(CellState::occupied)) continue;
     const int x = static_cast<int>(i % static_cast<std::size_t>(grid.width));
     const int y = static_cast<int>(i / static_cast<std::size_t>(grid.width));
     if (touches_obstacle(grid, x, y, time_s)) continue;
-    if (!copied) {
-      std::memcpy(forgotten_.data(), grid.cells, count);
-      copied = true;
-    }
-    forgotten_[i] = static_cast<std::uint8_t>(CellState::free);
+    forgotten.set(i, CellState::free);
     ++forgotten_last_;
   }
-  if (!copied) return grid;
-  GridView forgotten = grid;
-  forgotten.cells = forgotten_.data();
-  return forgotten;
+  return forgotten.result();
 }
 
 std::size_t TraceMemory::confirm_near(const GridView& grid, const Eigen::Vector2d& centre, double time_s) {

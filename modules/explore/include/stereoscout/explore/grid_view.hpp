@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 
 #include <Eigen/Core>
 
@@ -45,6 +46,31 @@ struct GridView {
     const Eigen::Vector2d local = (point - origin_m) / resolution_m;
     return {static_cast<int>(std::floor(local.x())), static_cast<int>(std::floor(local.y()))};
   }
+};
+
+// `grid` with some cells changed: copied into `buffer` (room for all its cells) at the first
+// change only, so that a grid with nothing to change is handed on as it is.
+class GridEdit {
+ public:
+  GridEdit(const GridView& grid, std::uint8_t* buffer) : grid_(grid), buffer_(buffer) {}
+
+  void set(std::size_t index, CellState state) {
+    if (!copied_) {
+      std::memcpy(buffer_, grid_.cells, static_cast<std::size_t>(grid_.width) * static_cast<std::size_t>(grid_.height));
+      copied_ = true;
+    }
+    buffer_[index] = static_cast<std::uint8_t>(state);
+  }
+  GridView result() const {
+    GridView edited = grid_;
+    if (copied_) edited.cells = buffer_;
+    return edited;
+  }
+
+ private:
+  GridView grid_;
+  std::uint8_t* buffer_;
+  bool copied_ = false;
 };
 
 // Visits the cells a ray from the centre of cell (x, y) along the unit vector `direction`
