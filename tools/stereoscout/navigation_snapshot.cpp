@@ -121,7 +121,11 @@ std::string write_navigation_snapshot(const stack::Stack& stack, const std::stri
   char stem[64];
   std::snprintf(stem, sizeof stem, "/navigation-%.1f", requested_s);
   const std::string base = folder + stem;
-  const occupancy::RosMap map = cropped_to_known(navigation_map_of(stack.grid_view()), kMarginCells);
+  // What the explorer planned on at its last rebuild: the estimate's grid with the contact
+  // cells and the recent obstacle layer's cells occupied (its own copy when there are any).
+  const explore::GridView& planned_on = stack.explorer().navigation_map().grid();
+  const occupancy::RosMap map =
+      cropped_to_known(navigation_map_of(planned_on.cells != nullptr ? planned_on : stack.grid_view()), kMarginCells);
   std::string error = occupancy::write_ros_map(map, base + ".pgm", base + ".yaml");
   if (error.empty()) error = write_map_png(magnified(map, kPixelsPerCell), map_overlays(stack), base + ".png");
   if (error.empty()) error = append_summary(stack, folder + "/navigation.csv", requested_s);
