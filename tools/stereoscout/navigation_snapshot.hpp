@@ -1,8 +1,9 @@
 #pragma once
 // What the robot believed at one instant, for tracing a decision of the explorer after a run:
-// the navigation grid it planned on (the filter's estimate's grid, classified: the ML
-// particle's unless filter.estimate_lineage_margin; contact cells the explorer stamps on top
-// are not in it), the ML trajectory so far and the current plan.
+// the navigation grid it planned on at its last map rebuild (the filter's estimate's grid,
+// classified: the ML particle's unless filter.estimate_lineage_margin; with the contact cells
+// and the recent obstacle layer's cells the explorer stamps on top), the ML trajectory so far
+// and the current plan.
 // `stereoscout explore --snapshot-at T` writes them between two ticks, outside the loop's
 // allocation scope, at the first tick at or after T, as snapshots/navigation-<T>.pgm + .yaml
 // (map_server format: the known part of the navigation grid and a metre around it) and .png

@@ -20,7 +20,6 @@ RecentObstacles::RecentObstacles(const core::ExploreConfig& config, int max_widt
       min_points_(std::max(1, config.recent_obstacle_min_points)),
       capacity_(config.recent_obstacle_s > 0.0 ? static_cast<std::size_t>(std::max(1, config.recent_obstacle_capacity)) : 0),
       points_(new Point[capacity_ == 0 ? 1 : capacity_]),
-      forget_(new bool[capacity_ == 0 ? 1 : capacity_]()),
       cell_capacity_(capacity_ == 0 ? 0 : cells_of(max_width, max_height)),
       counts_(new std::uint8_t[cell_capacity_ == 0 ? 1 : cell_capacity_]()),
       cells_(new std::uint8_t[cell_capacity_ == 0 ? 1 : cell_capacity_]),
@@ -55,28 +54,19 @@ void RecentObstacles::forget_seen_past(const core::DepthScan& scan, const core::
     bin.measurable_m = std::max(bin.measurable_m, column.measurable_from_m);
     bin.measured = true;
   }
+  // Compacted in place, oldest first still.
   const core::Pose2 robot_from_odometry = odometry.inverse();
-  bool any = false;
+  std::size_t kept = 0;
   for (std::size_t i = 0; i < size_; ++i) {
     const Eigen::Vector2d ray = robot_from_odometry.transform_point(points_[i].odometry_xy) - scan.origin_robot;
     const BearingBin& bin = bins_[bin_of(std::atan2(ray.y(), ray.x()))];
     const double range = ray.norm();
-    forget_[i] = bin.measured && range >= bin.measurable_m && bin.seen_past_m > range + kSeenPastMargin_m;
-    if (forget_[i]) {
+    if (bin.measured && range >= bin.measurable_m && bin.seen_past_m > range + kSeenPastMargin_m) {
       ++seen_past_;
-      any = true;
+      continue;
     }
-  }
-  if (any) remove_if_marked();
-}
-
-void RecentObstacles::remove_if_marked() {
-  std::size_t kept = 0;
-  for (std::size_t i = 0; i < size_; ++i) {
-    if (forget_[i]) continue;
     points_[kept++] = points_[i];
   }
-  std::fill(forget_.get(), forget_.get() + size_, false);
   size_ = kept;
 }
 

@@ -32,6 +32,9 @@
 // and carries on to the same goal on a new plan. A robot that commands forward motion but
 // does not move has touched something the camera did not see (contact_memory.hpp): it stops,
 // the cells just beyond its rim ahead count as occupied for planning, and it replans.
+// With recent_obstacle_s, what the recent scans saw at the camera's height, kept in the
+// odometry frame, counts as occupied too, for the plans and the safety check alike
+// (recent_obstacles.hpp).
 //
 // All buffers are allocated by the constructor; step() allocates nothing.
 

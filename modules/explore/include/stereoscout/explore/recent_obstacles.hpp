@@ -80,7 +80,6 @@ class RecentObstacles {
 
   void forget_seen_past(const core::DepthScan& scan, const core::Pose2& odometry);
   void keep_columns(const core::DepthScan& scan, const core::Pose2& odometry, double time_s);
-  void remove_if_marked();
   void drop_oldest(std::size_t count);
   static int bin_of(double bearing_rad);
 
@@ -89,7 +88,6 @@ class RecentObstacles {
   int min_points_ = 1;
   std::size_t capacity_ = 0;
   std::unique_ptr<Point[]> points_;  // oldest first
-  std::unique_ptr<bool[]> forget_;
   std::size_t size_ = 0;
   BearingBin bins_[kBearingBins];
   double last_scan_time_s_ = -1.0;
