@@ -16,6 +16,7 @@ std::size_t cells_of(int width, int height) {
 
 RecentObstacles::RecentObstacles(const core::ExploreConfig& config, int max_width, int max_height)
     : keep_s_(config.recent_obstacle_s),
+      travel_m_(config.recent_obstacle_travel_m),
       range_m_(config.recent_obstacle_range_m),
       min_points_(std::max(1, config.recent_obstacle_min_points)),
       capacity_(config.recent_obstacle_s > 0.0 ? static_cast<std::size_t>(std::max(1, config.recent_obstacle_capacity)) : 0),
@@ -33,7 +34,9 @@ int RecentObstacles::bin_of(double bearing_rad) {
 
 void RecentObstacles::observe(const SeenObstacles& seen) {
   if (!enabled() || seen.scan == nullptr || seen.time_s <= last_scan_time_s_) return;
+  if (last_scan_time_s_ >= 0.0) driven_m_ += (seen.odometry.translation() - last_scan_odometry_.translation()).norm();
   last_scan_time_s_ = seen.time_s;
+  last_scan_odometry_ = seen.odometry;
   forget_seen_past(*seen.scan, seen.odometry);
   keep_columns(*seen.scan, seen.odometry, seen.time_s);
 }
@@ -88,16 +91,21 @@ void RecentObstacles::keep_columns(const core::DepthScan& scan, const core::Pose
       drop_oldest(drop);
       dropped_full_ += drop;
     }
-    points_[size_++] = Point{odometry.transform_point(robot_xy), time_s};
+    points_[size_++] = Point{odometry.transform_point(robot_xy), time_s, driven_m_};
     ++kept_;
   }
+}
+
+bool RecentObstacles::expired(const Point& point, double time_s) const {
+  return time_s - point.time_s > keep_s_ || (travel_m_ > 0.0 && driven_m_ - point.driven_m > travel_m_);
 }
 
 GridView RecentObstacles::stamp(const GridView& grid, const core::Pose2& pose, const core::Pose2& odometry,
                                 double time_s) {
   if (!enabled()) return grid;
   std::size_t first = 0;
-  while (first < size_ && time_s - points_[first].time_s > keep_s_) ++first;
+  // Kept in time order, so both limits expire a prefix.
+  while (first < size_ && expired(points_[first], time_s)) ++first;
   drop_oldest(first);
   expired_ += first;
   if (size_ == 0) return grid;

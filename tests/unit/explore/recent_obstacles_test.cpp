@@ -163,6 +163,34 @@ TEST(RecentObstacles, PointsExpireAndAStrayPointMarksNoCell) {
   EXPECT_EQ(recent.held(), 0U);
 }
 
+// With recent_obstacle_travel_m, a point lasts while the robot turns or waits (odometry does
+// not drift standing still), and goes once the odometry has driven that far.
+TEST(RecentObstacles, PointsLastWhileTheRobotTurnsAndExpireByTheDistanceDriven) {
+  core::ExploreConfig config = recent_config();
+  config.recent_obstacle_s = 600.0;
+  config.recent_obstacle_travel_m = 3.0;
+  RecentObstacles recent(config, 80, 80);
+  const TestGrid grid(80, 80, CellState::free);
+  const core::Pose2 pose{2.0, 3.0, 0.0};
+  const core::DepthScan wall = wall_ahead(1.0, 0.4);
+  const core::DepthScan nothing;
+  recent.observe(seen_at(wall, core::Pose2{}, 1.0));
+  recent.observe(seen_at(nothing, core::Pose2{2.0, 0.0, 0.0}, 20.0));
+  for (int turn = 1; turn <= 8; ++turn) {
+    recent.observe(seen_at(nothing, core::Pose2{2.0, 0.0, 0.7 * turn}, 20.0 + 30.0 * turn));
+  }
+  const double time_s = 300.0;  // ten times recent_config()'s 30 s
+  const core::Pose2 odometry{2.0, 0.0, 0.0};
+  const GridView turned = recent.stamp(grid.view(), pose, odometry, time_s);
+  EXPECT_NEAR(recent.driven_m(), 2.0, 1e-9);
+  EXPECT_TRUE(occupied_at(turned, pose.compose(odometry.inverse()).transform_point({1.0, 0.0})));
+  EXPECT_EQ(recent.expired(), 0U);
+  recent.observe(seen_at(nothing, core::Pose2{2.0, 1.1, 0.0}, time_s + 10.0));
+  EXPECT_EQ(recent.stamp(grid.view(), pose, core::Pose2{2.0, 1.1, 0.0}, time_s + 10.0).cells, grid.view().cells);
+  EXPECT_EQ(recent.held(), 0U);
+  EXPECT_EQ(recent.expired(), recent.kept());
+}
+
 TEST(RecentObstacles, AScanIsObservedOnceAndAFullMemoryDropsItsOldest) {
   core::ExploreConfig config = recent_config();
   config.recent_obstacle_capacity = 50;

@@ -14,7 +14,8 @@
 //
 // A point is forgotten when a later scan saw past it (the floor or a surface beyond it, in
 // every column around its bearing, farther than the matcher's near limit): a person who walked
-// on, a stray match. Otherwise after recent_obstacle_s. Buffers are allocated by the
+// on, a stray match. Otherwise after recent_obstacle_s, or once the odometry has driven
+// recent_obstacle_travel_m since it was kept (its drift grows with distance, not time). Buffers are allocated by the
 // constructor; observe() and stamp() allocate nothing.
 
 #include <cstddef>
@@ -51,7 +52,8 @@ class RecentObstacles {
   // forgets the kept points it saw past, then keeps its obstacle columns at the camera's
   // height within recent_obstacle_range_m of the camera.
   void observe(const SeenObstacles& seen);
-  // Forgets points older than recent_obstacle_s, then returns `grid` with the cells holding
+  // Forgets points older than recent_obstacle_s or kept more than recent_obstacle_travel_m of
+  // driving ago, then returns `grid` with the cells holding
   // recent_obstacle_min_points kept points occupied, the points placed from `pose` (the
   // robot's map pose now) by the odometry since (`odometry`: the odometry pose now): a copy in
   // the memory's own buffer, or `grid` itself when no cell changes (or it is larger than the
@@ -61,7 +63,8 @@ class RecentObstacles {
   std::size_t held() const { return size_; }
   std::uint64_t kept() const { return kept_; }
   std::uint64_t seen_past() const { return seen_past_; }
-  std::uint64_t expired() const { return expired_; }
+  std::uint64_t expired() const { return expired_; }  // by time or by distance driven
+  double driven_m() const { return driven_m_; }      // odometry path length over the scans
   std::uint64_t dropped_full() const { return dropped_full_; }
   std::uint64_t cells_stamped() const { return cells_stamped_; }  // over all stamp() calls
   std::uint64_t grid_too_large() const { return grid_too_large_; }
@@ -70,6 +73,7 @@ class RecentObstacles {
   struct Point {
     Eigen::Vector2d odometry_xy = Eigen::Vector2d::Zero();
     double time_s = 0.0;
+    double driven_m = 0.0;  // the odometry path length when it was kept
   };
   // What one scan saw past, per bearing bin from its camera origin (robot frame).
   struct BearingBin {
@@ -80,10 +84,12 @@ class RecentObstacles {
 
   void forget_seen_past(const core::DepthScan& scan, const core::Pose2& odometry);
   void keep_columns(const core::DepthScan& scan, const core::Pose2& odometry, double time_s);
+  bool expired(const Point& point, double time_s) const;
   void drop_oldest(std::size_t count);
   static int bin_of(double bearing_rad);
 
   double keep_s_ = 0.0;
+  double travel_m_ = 0.0;  // 0: no distance limit
   double range_m_ = 0.0;
   int min_points_ = 1;
   std::size_t capacity_ = 0;
@@ -91,6 +97,8 @@ class RecentObstacles {
   std::size_t size_ = 0;
   BearingBin bins_[kBearingBins];
   double last_scan_time_s_ = -1.0;
+  core::Pose2 last_scan_odometry_;
+  double driven_m_ = 0.0;
   // stamp(): per-cell counts, reset through the list of cells touched.
   std::size_t cell_capacity_ = 0;
   std::unique_ptr<std::uint8_t[]> counts_;
