@@ -41,18 +41,6 @@ void RecentObstacles::observe(const SeenObstacles& seen) {
   keep_columns(*seen.scan, seen.odometry, seen.time_s);
 }
 
-// A point in bin `centre` at `range` was seen past when that bin and its neighbours each
-// measured something beyond it. The neighbours keep a jamb's edge: stereo places it a
-// centimetre or two either side of the true edge, and a bin just inside the door sees the room
-// beyond while the bin on the wall's side, blank, measured nothing.
-bool RecentObstacles::seen_past(int centre, double range) const {
-  for (int offset = -kSeenPastNeighbourBins; offset <= kSeenPastNeighbourBins; ++offset) {
-    const BearingBin& bin = bins_[(centre + offset + kBearingBins) % kBearingBins];
-    if (!bin.measured || range < bin.measurable_m || bin.seen_past_m <= range + kSeenPastMargin_m) return false;
-  }
-  return true;
-}
-
 // Per bearing bin the nearest range any of its columns measured (an obstacle's, or a free
 // column's end less its uncertainty): a kept point nearer than that by kSeenPastMargin_m, and
 // beyond every column's near limit, was seen past.
@@ -74,7 +62,9 @@ void RecentObstacles::forget_seen_past(const core::DepthScan& scan, const core::
   std::size_t kept = 0;
   for (std::size_t i = 0; i < size_; ++i) {
     const Eigen::Vector2d ray = robot_from_odometry.transform_point(points_[i].odometry_xy) - scan.origin_robot;
-    if (seen_past(bin_of(std::atan2(ray.y(), ray.x())), ray.norm())) {
+    const BearingBin& bin = bins_[bin_of(std::atan2(ray.y(), ray.x()))];
+    const double range = ray.norm();
+    if (bin.measured && range >= bin.measurable_m && bin.seen_past_m > range + kSeenPastMargin_m) {
       ++seen_past_;
       continue;
     }

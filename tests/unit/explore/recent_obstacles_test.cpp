@@ -135,32 +135,6 @@ TEST(RecentObstacles, APointNearerThanALaterScanMeasuresOrAsFarAsItSawIsKept) {
   EXPECT_GT(recent.held(), held);
 }
 
-// A jamb's edge, placed by stereo a centimetre into the door: a later scan from the same place
-// sees the room through the door up to the edge's bearing and nothing on the blank wall's
-// side of it. The edge's point is in a bin that saw past it, its neighbour on the wall's side
-// measured nothing: it is kept.
-TEST(RecentObstacles, AJambsEdgeBesideABlankWallIsKeptWhenTheDoorBesideItIsSeenThrough) {
-  RecentObstacles recent(recent_config(), 60, 60);
-  core::DepthScan jamb;
-  for (double y = -0.01; y <= 0.3; y += 0.01) {
-    jamb.columns.push_back(column(1.0, y, core::DepthScanColumn::Kind::obstacle));
-  }
-  recent.observe(seen_at(jamb, core::Pose2{}, 1.0));
-  const std::size_t held = recent.held();
-  core::DepthScan through_the_door;
-  for (double bearing_deg = -14.0; bearing_deg <= 14.0; bearing_deg += 0.1) {
-    const double bearing = core::degrees_to_radians(bearing_deg);
-    if (bearing_deg < -0.1) {
-      through_the_door.columns.push_back(column(3.0 * std::cos(bearing), 3.0 * std::sin(bearing), core::DepthScanColumn::Kind::free));
-    } else {
-      through_the_door.columns.push_back(column(std::cos(bearing), std::sin(bearing), core::DepthScanColumn::Kind::invalid));
-    }
-  }
-  recent.observe(seen_at(through_the_door, core::Pose2{}, 2.0));
-  EXPECT_EQ(recent.seen_past(), 0U);
-  EXPECT_EQ(recent.held(), held);
-}
-
 TEST(RecentObstacles, LowObstaclesAndFarSurfacesAreNotKept) {
   RecentObstacles recent(recent_config(), 60, 60);
   const core::DepthScan box = wall_ahead(1.0, 0.4, /*at_camera_height=*/false);

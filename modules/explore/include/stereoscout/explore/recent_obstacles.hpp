@@ -42,9 +42,6 @@ class RecentObstacles {
   // A later scan sees past a point when it measured the floor or a surface this much beyond it
   // (the scan's same-surface depth), plus twice a free column's end-range sigma.
   static constexpr double kSeenPastMargin_m = 0.15;
-  // ... in the point's bin and this many bins either side of it (an edge's point is kept
-  // while a neighbouring bin measured nothing or something no farther).
-  static constexpr int kSeenPastNeighbourBins = 1;
 
   // max_width x max_height: the largest grid stamp() must copy.
   RecentObstacles(const core::ExploreConfig& config, int max_width, int max_height);
@@ -89,7 +86,6 @@ class RecentObstacles {
   void keep_columns(const core::DepthScan& scan, const core::Pose2& odometry, double time_s);
   bool expired(const Point& point, double time_s) const;
   void drop_oldest(std::size_t count);
-  bool seen_past(int centre, double range) const;
   static int bin_of(double bearing_rad);
 
   double keep_s_ = 0.0;
