@@ -15,8 +15,8 @@
 // A point is forgotten when a later scan saw past it (the floor or a surface beyond it, in
 // every column around its bearing, farther than the matcher's near limit): a person who walked
 // on, a stray match. Otherwise after recent_obstacle_s, or once the odometry has driven
-// recent_obstacle_travel_m since it was kept (its drift grows with distance, not time). Buffers are allocated by the
-// constructor; observe() and stamp() allocate nothing.
+// recent_obstacle_travel_m since it was kept (its drift grows with distance, not time).
+// Buffers are allocated by the constructor; observe() and stamp() allocate nothing.
 
 #include <cstddef>
 #include <cstdint>
@@ -53,11 +53,11 @@ class RecentObstacles {
   // height within recent_obstacle_range_m of the camera.
   void observe(const SeenObstacles& seen);
   // Forgets points older than recent_obstacle_s or kept more than recent_obstacle_travel_m of
-  // driving ago, then returns `grid` with the cells holding
-  // recent_obstacle_min_points kept points occupied, the points placed from `pose` (the
-  // robot's map pose now) by the odometry since (`odometry`: the odometry pose now): a copy in
-  // the memory's own buffer, or `grid` itself when no cell changes (or it is larger than the
-  // buffer, counted). Valid until the next call.
+  // driving ago, then returns `grid` with the cells holding recent_obstacle_min_points kept
+  // points occupied, the points placed from `pose` (the robot's map pose now) by the odometry
+  // since (`odometry`: the odometry pose now): a copy in the memory's own buffer, or `grid`
+  // itself when no cell changes (or it is larger than the buffer, counted). Valid until the
+  // next call.
   GridView stamp(const GridView& grid, const core::Pose2& pose, const core::Pose2& odometry, double time_s);
 
   std::size_t held() const { return size_; }
