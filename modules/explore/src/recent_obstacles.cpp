@@ -96,7 +96,7 @@ void RecentObstacles::keep_columns(const core::DepthScan& scan, const core::Pose
   }
 }
 
-bool RecentObstacles::expired(const Point& point, double time_s) const {
+bool RecentObstacles::outlived(const Point& point, double time_s) const {
   return time_s - point.time_s > keep_s_ || (travel_m_ > 0.0 && driven_m_ - point.driven_m > travel_m_);
 }
 
@@ -105,7 +105,7 @@ GridView RecentObstacles::stamp(const GridView& grid, const core::Pose2& pose, c
   if (!enabled()) return grid;
   std::size_t first = 0;
   // Kept in time order, so both limits expire a prefix.
-  while (first < size_ && expired(points_[first], time_s)) ++first;
+  while (first < size_ && outlived(points_[first], time_s)) ++first;
   drop_oldest(first);
   expired_ += first;
   if (size_ == 0) return grid;

@@ -84,7 +84,7 @@ class RecentObstacles {
 
   void forget_seen_past(const core::DepthScan& scan, const core::Pose2& odometry);
   void keep_columns(const core::DepthScan& scan, const core::Pose2& odometry, double time_s);
-  bool expired(const Point& point, double time_s) const;
+  bool outlived(const Point& point, double time_s) const;  // past either limit
   void drop_oldest(std::size_t count);
   static int bin_of(double bearing_rad);
 
