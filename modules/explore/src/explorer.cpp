@@ -69,7 +69,7 @@ Explorer::Explorer(const ExploreParams& params)
       goal_value_(params),
       memory_(static_cast<std::size_t>(params.explore.goal_memory), params.explore.visited_goal_radius_m,
               params.explore.blacklist_radius_m, params.explore.goal_failures_before_blacklist,
-              params.explore.failed_goal_cooldown_s),
+              params.explore.failed_goal_cooldown_s, params.explore.blacklist_hold_s),
       stall_(params.explore),
       contacts_(params.explore, params.max_width, params.max_height),
       recent_(params.explore, params.max_width, params.max_height),

@@ -13,13 +13,14 @@ double squared(double value) { return value * value; }
 }  // namespace
 
 GoalMemory::GoalMemory(std::size_t capacity, double radius_m, double blacklist_radius_m,
-                       int failures_before_blacklist, double cooldown_s)
+                       int failures_before_blacklist, double cooldown_s, double hold_s)
     : entries_(capacity),
       radius2_(squared(radius_m)),
       // Never below the visited radius: failures add up within it.
       blacklist_radius2_(squared(std::max(radius_m, blacklist_radius_m))),
       failures_before_blacklist_(failures_before_blacklist),
-      cooldown_s_(cooldown_s) {}
+      cooldown_s_(cooldown_s),
+      hold_s_(hold_s) {}
 
 GoalMemory::Entry* GoalMemory::find(const Eigen::Vector2d& position) {
   for (Entry& entry : entries_) {
@@ -37,11 +38,21 @@ bool GoalMemory::record_failure(const Eigen::Vector2d& position, double time_s) 
       return false;
     }
   }
-  if (entry->failures >= failures_before_blacklist_) return true;
+  if (entry->visited || held(*entry, time_s)) return true;
+  if (entry->failures >= failures_before_blacklist_) entry->failures = 0;  // its hold is over
   entry->last_failure_s = time_s;
   if (++entry->failures < failures_before_blacklist_) return false;
+  ++entry->blacklistings;
   ++blacklisted_;
   return true;
+}
+
+bool GoalMemory::held(const Entry& entry, double time_s) const {
+  if (entry.failures < failures_before_blacklist_) return false;
+  if (hold_s_ <= 0.0) return true;
+  // Doubled with each blacklisting (the exponent capped: 2^20 holds outlast any run).
+  const double hold_s = std::ldexp(hold_s_, std::min(std::max(entry.blacklistings - 1, 0), 20));
+  return time_s - entry.last_failure_s < hold_s;
 }
 
 void GoalMemory::record_visit(const Eigen::Vector2d& position) {
@@ -57,10 +68,13 @@ void GoalMemory::record_visit(const Eigen::Vector2d& position) {
 
 bool GoalMemory::excluded(const Eigen::Vector2d& position, double time_s) const {
   for (const Entry& entry : entries_) {
+    if (entry.visited) {
+      if ((entry.position - position).squaredNorm() <= radius2_) return true;
+      continue;
+    }
     const bool cooling = entry.failures > 0 && time_s - entry.last_failure_s < cooldown_s_;
-    if (entry.failures < failures_before_blacklist_ && !cooling) continue;
-    const double radius2 = entry.visited ? radius2_ : blacklist_radius2_;
-    if ((entry.position - position).squaredNorm() <= radius2) return true;
+    if (!held(entry, time_s) && !cooling) continue;
+    if ((entry.position - position).squaredNorm() <= blacklist_radius2_) return true;
   }
   return false;
 }

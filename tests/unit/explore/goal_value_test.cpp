@@ -135,6 +135,39 @@ TEST(GoalMemory, AGoalThatJustFailedIsSkippedForTheCooldownOnly) {
   EXPECT_FALSE(without.excluded(goal, 100.0));
 }
 
+// With a hold, a blacklisting passes: the goal (and the candidates beside it) may be chosen
+// again hold_s after its last failure, its failures counted afresh, and a second blacklisting
+// lasts twice as long. A failure while held neither counts nor lengthens the hold. Visited
+// goals, and blacklistings without a hold, last for good.
+TEST(GoalMemory, ABlacklistingLastsItsHoldThenTwiceAsLongTheNextTime) {
+  GoalMemory memory(8, 0.5, 2.0, 3, 0.0, 600.0);
+  const Eigen::Vector2d goal(14.05, 5.15);
+  const Eigen::Vector2d beside = goal + Eigen::Vector2d(1.5, 0.0);
+  EXPECT_FALSE(memory.record_failure(goal, 100.0));
+  EXPECT_FALSE(memory.record_failure(goal, 200.0));
+  EXPECT_TRUE(memory.record_failure(goal, 300.0));
+  EXPECT_TRUE(memory.excluded(beside, 899.0));
+  EXPECT_TRUE(memory.record_failure(goal, 500.0));  // held: not counted
+  EXPECT_FALSE(memory.excluded(beside, 901.0));
+  EXPECT_FALSE(memory.excluded(goal, 901.0));
+  EXPECT_FALSE(memory.record_failure(goal, 1000.0));
+  EXPECT_FALSE(memory.excluded(beside, 1001.0));  // one failure again: not blacklisted
+  EXPECT_FALSE(memory.record_failure(goal, 1100.0));
+  EXPECT_TRUE(memory.record_failure(goal, 1200.0));
+  EXPECT_EQ(memory.blacklisted(), 2U);
+  EXPECT_TRUE(memory.excluded(beside, 2399.0));
+  EXPECT_FALSE(memory.excluded(beside, 2401.0));
+
+  const Eigen::Vector2d visited(3.0, 3.0);
+  memory.record_visit(visited);
+  EXPECT_TRUE(memory.excluded(visited, 1e6));
+  EXPECT_TRUE(memory.record_failure(visited, 1e6));
+
+  GoalMemory for_good(8, 0.5, 2.0, 3);  // no hold: the default
+  for (double t : {100.0, 200.0, 300.0}) for_good.record_failure(goal, t);
+  EXPECT_TRUE(for_good.excluded(beside, 1e6));
+}
+
 // A known free room (walls around) with an unknown region beyond its right wall seen through
 // a doorway, and a second free room that is not connected to the robot's.
 struct SelectionScene {

@@ -37,11 +37,15 @@ struct Goal {
 // the robot cannot pass (too narrow, or hung with something at its height) offers one goal
 // after another beside the last, and each failure costs a drive there. With a cooldown, a goal
 // that failed less than cooldown_s ago also excludes candidates within blacklist_radius_m.
+// With a hold, a blacklisting lasts hold_s after its last failure, twice that the second time,
+// and so on (explore.blacklist_hold_s); then the goal may be chosen again, its failures counted
+// afresh. Without one (0) it lasts for good. A visited goal stays excluded for good either way.
 class GoalMemory {
  public:
   GoalMemory(std::size_t capacity, double radius_m, double blacklist_radius_m, int failures_before_blacklist,
-             double cooldown_s = 0.0);
-  // Counts a failure at time_s of the goal at `position`; returns true when it is now blacklisted.
+             double cooldown_s = 0.0, double hold_s = 0.0);
+  // Counts a failure at time_s of the goal at `position`; returns true when it is now blacklisted
+  // (or still is, from earlier failures).
   bool record_failure(const Eigen::Vector2d& position, double time_s);
   // A reached goal is never chosen again (it was looked around from).
   void record_visit(const Eigen::Vector2d& position);
@@ -57,13 +61,16 @@ class GoalMemory {
     int failures = 0;
     bool visited = false;
     double last_failure_s = 0.0;
+    int blacklistings = 0;  // times it has been blacklisted
   };
   Entry* find(const Eigen::Vector2d& position);
+  bool held(const Entry& entry, double time_s) const;  // blacklisted at time_s
   core::FixedVector<Entry> entries_;
   double radius2_;
   double blacklist_radius2_;
   int failures_before_blacklist_;
   double cooldown_s_;
+  double hold_s_;
   std::uint64_t blacklisted_ = 0;
   std::uint64_t forgotten_ = 0;
 };
