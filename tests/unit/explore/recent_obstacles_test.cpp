@@ -62,8 +62,13 @@ bool occupied_at(const GridView& grid, const Eigen::Vector2d& point) {
   return grid.at(cell.x(), cell.y()) == CellState::occupied;
 }
 
-TEST(RecentObstacles, OffByDefaultTheGridIsTheInputGrid) {
-  RecentObstacles recent(core::ExploreConfig{}, 60, 60);
+// recent_obstacle_s 0 turns the layer off (on by default since 2026-11-29): nothing kept, the
+// grid handed back as it came.
+TEST(RecentObstacles, OffTheGridIsTheInputGrid) {
+  core::ExploreConfig off;
+  off.recent_obstacle_s = 0.0;
+  ASSERT_GT(core::ExploreConfig{}.recent_obstacle_s, 0.0);
+  RecentObstacles recent(off, 60, 60);
   const TestGrid grid(60, 60, CellState::free);
   const core::DepthScan scan = wall_ahead(1.0, 0.6);
   recent.observe(seen_at(scan, core::Pose2{}, 1.0));
