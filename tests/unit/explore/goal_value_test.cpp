@@ -163,7 +163,7 @@ TEST(GoalMemory, ABlacklistingLastsItsHoldThenTwiceAsLongTheNextTime) {
   EXPECT_TRUE(memory.excluded(visited, 1e6));
   EXPECT_TRUE(memory.record_failure(visited, 1e6));
 
-  GoalMemory for_good(8, 0.5, 2.0, 3);  // no hold: the default
+  GoalMemory for_good(8, 0.5, 2.0, 3);  // no hold (0): for good
   for (double t : {100.0, 200.0, 300.0}) for_good.record_failure(goal, t);
   EXPECT_TRUE(for_good.excluded(beside, 1e6));
 }
