@@ -10,6 +10,9 @@ namespace {
 
 double squared(double value) { return value * value; }
 
+// A blacklisting's hold doubles at most this many times: 2^20 holds outlast any run.
+constexpr int kMaxHoldDoublings = 20;
+
 }  // namespace
 
 GoalMemory::GoalMemory(std::size_t capacity, double radius_m, double blacklist_radius_m,
@@ -50,8 +53,8 @@ bool GoalMemory::record_failure(const Eigen::Vector2d& position, double time_s) 
 bool GoalMemory::held(const Entry& entry, double time_s) const {
   if (entry.failures < failures_before_blacklist_) return false;
   if (hold_s_ <= 0.0) return true;
-  // Doubled with each blacklisting (the exponent capped: 2^20 holds outlast any run).
-  const double hold_s = std::ldexp(hold_s_, std::min(std::max(entry.blacklistings - 1, 0), 20));
+  const int doublings = std::clamp(entry.blacklistings - 1, 0, kMaxHoldDoublings);
+  const double hold_s = std::ldexp(hold_s_, doublings);
   return time_s - entry.last_failure_s < hold_s;
 }
 
@@ -62,8 +65,7 @@ void GoalMemory::record_visit(const Eigen::Vector2d& position) {
     ++forgotten_;
     return;
   }
-  entry->failures = std::max(entry->failures, failures_before_blacklist_);
-  entry->visited = true;
+  entry->visited = true;  // excluded for good, whatever its failures
 }
 
 bool GoalMemory::excluded(const Eigen::Vector2d& position, double time_s) const {
