@@ -19,6 +19,7 @@ RecentObstacles::RecentObstacles(const core::ExploreConfig& config, int max_widt
       travel_m_(config.recent_obstacle_travel_m),
       range_m_(config.recent_obstacle_range_m),
       min_points_(std::max(1, config.recent_obstacle_min_points)),
+      estimate_heading_(config.recent_obstacle_estimate_heading),
       capacity_(config.recent_obstacle_s > 0.0 ? static_cast<std::size_t>(std::max(1, config.recent_obstacle_capacity)) : 0),
       points_(new Point[capacity_ == 0 ? 1 : capacity_]),
       cell_capacity_(capacity_ == 0 ? 0 : cells_of(max_width, max_height)),
@@ -32,19 +33,31 @@ int RecentObstacles::bin_of(double bearing_rad) {
   return std::clamp(bin, 0, kBearingBins - 1);
 }
 
+core::Pose2 RecentObstacles::layer_pose(const core::Pose2& pose, const core::Pose2& odometry) const {
+  if (!estimate_heading_) return odometry;
+  if (last_scan_time_s_ < 0.0) return pose;
+  // The stretch's chord in the robot's frame at the last scan is exact for any path the
+  // odometry drove; only its heading there is taken from the estimate.
+  const Eigen::Vector2d chord = last_scan_odometry_.inverse().transform_point(odometry.translation());
+  const Eigen::Vector2d moved = last_scan_layer_.transform_point(chord);
+  return core::Pose2{moved.x(), moved.y(), pose.theta};
+}
+
 void RecentObstacles::observe(const SeenObstacles& seen) {
   if (!enabled() || seen.scan == nullptr || seen.time_s <= last_scan_time_s_) return;
+  const core::Pose2 layer = layer_pose(seen.pose, seen.odometry);
   if (last_scan_time_s_ >= 0.0) driven_m_ += (seen.odometry.translation() - last_scan_odometry_.translation()).norm();
   last_scan_time_s_ = seen.time_s;
   last_scan_odometry_ = seen.odometry;
-  forget_seen_past(*seen.scan, seen.odometry);
-  keep_columns(*seen.scan, seen.odometry, seen.time_s);
+  last_scan_layer_ = layer;
+  forget_seen_past(*seen.scan, layer);
+  keep_columns(*seen.scan, layer, seen.time_s);
 }
 
 // Per bearing bin the nearest range any of its columns measured (an obstacle's, or a free
 // column's end less its uncertainty): a kept point nearer than that by kSeenPastMargin_m, and
 // beyond every column's near limit, was seen past.
-void RecentObstacles::forget_seen_past(const core::DepthScan& scan, const core::Pose2& odometry) {
+void RecentObstacles::forget_seen_past(const core::DepthScan& scan, const core::Pose2& layer) {
   if (size_ == 0) return;
   for (BearingBin& bin : bins_) bin = BearingBin{};
   for (const core::DepthScanColumn& column : scan.columns) {
@@ -58,10 +71,10 @@ void RecentObstacles::forget_seen_past(const core::DepthScan& scan, const core::
     bin.measured = true;
   }
   // Compacted in place, oldest first still.
-  const core::Pose2 robot_from_odometry = odometry.inverse();
+  const core::Pose2 robot_from_layer = layer.inverse();
   std::size_t kept = 0;
   for (std::size_t i = 0; i < size_; ++i) {
-    const Eigen::Vector2d ray = robot_from_odometry.transform_point(points_[i].odometry_xy) - scan.origin_robot;
+    const Eigen::Vector2d ray = robot_from_layer.transform_point(points_[i].layer_xy) - scan.origin_robot;
     const BearingBin& bin = bins_[bin_of(std::atan2(ray.y(), ray.x()))];
     const double range = ray.norm();
     if (bin.measured && range >= bin.measurable_m && bin.seen_past_m > range + kSeenPastMargin_m) {
@@ -78,7 +91,7 @@ void RecentObstacles::drop_oldest(std::size_t count) {
   size_ -= count;
 }
 
-void RecentObstacles::keep_columns(const core::DepthScan& scan, const core::Pose2& odometry, double time_s) {
+void RecentObstacles::keep_columns(const core::DepthScan& scan, const core::Pose2& layer, double time_s) {
   Eigen::Vector2d last = Eigen::Vector2d::Constant(1e9);
   for (const core::DepthScanColumn& column : scan.columns) {
     if (column.kind != core::DepthScanColumn::Kind::obstacle || !column.obstacle_at_camera_height) continue;
@@ -91,7 +104,7 @@ void RecentObstacles::keep_columns(const core::DepthScan& scan, const core::Pose
       drop_oldest(drop);
       dropped_full_ += drop;
     }
-    points_[size_++] = Point{odometry.transform_point(robot_xy), time_s, driven_m_};
+    points_[size_++] = Point{layer.transform_point(robot_xy), time_s, driven_m_};
     ++kept_;
   }
 }
@@ -113,10 +126,10 @@ GridView RecentObstacles::stamp(const GridView& grid, const core::Pose2& pose, c
     ++grid_too_large_;
     return grid;
   }
-  const core::Pose2 map_from_odometry = pose.compose(odometry.inverse());
+  const core::Pose2 map_from_layer = pose.compose(layer_pose(pose, odometry).inverse());
   std::size_t touched = 0;
   for (std::size_t i = 0; i < size_; ++i) {
-    const Eigen::Vector2i cell = grid.cell_of(map_from_odometry.transform_point(points_[i].odometry_xy));
+    const Eigen::Vector2i cell = grid.cell_of(map_from_layer.transform_point(points_[i].layer_xy));
     if (!grid.contains(cell.x(), cell.y())) continue;
     const std::size_t index = grid.index(cell.x(), cell.y());
     if (counts_[index] == 0) touched_[touched++] = index;

@@ -391,14 +391,14 @@ ScanGuardResult drive_past_seen_person(const ScanGuardCase& scene_case, double e
     person.push_back(robot + scene_case.ahead_m * along + 0.25 * Eigen::Vector2d(std::cos(angle), std::sin(angle)));
   }
   ExploreInput input = input_at(scene.grid.view(), robot.x(), robot.y(), heading, 0.05, false);
-  input.seen = SeenObstacles{person.data(), person.size(), 0.05 - scene_case.scan_age_s, nullptr, {}};
+  input.seen = SeenObstacles{person.data(), person.size(), 0.05 - scene_case.scan_age_s, nullptr, {}, {}};
   ScanGuardResult result;
   result.output = explorer.step(input);
   result.counters = explorer.counters();
   result.last_event = explorer.journal()[explorer.journal().size() - 1].kind;
   for (double time = 0.1; time < 4.0 && result.drives_on_at_s < 0.0; time += 0.05) {
     input.time_s = time;
-    if (empty_scan_at_s >= 0.0 && time >= empty_scan_at_s - 1e-9) input.seen = SeenObstacles{person.data(), 0, empty_scan_at_s, nullptr, {}};
+    if (empty_scan_at_s >= 0.0 && time >= empty_scan_at_s - 1e-9) input.seen = SeenObstacles{person.data(), 0, empty_scan_at_s, nullptr, {}, {}};
     const core::DriveCommand drive = explorer.step(input).drive;
     if (drive.linear_mps != 0.0 || drive.angular_rad_s != 0.0) result.drives_on_at_s = time;
   }

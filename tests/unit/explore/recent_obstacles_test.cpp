@@ -49,11 +49,13 @@ core::DepthScan floor_ahead(double free_to_m, double width_m, double measurable_
   return scan;
 }
 
-SeenObstacles seen_at(const core::DepthScan& scan, const core::Pose2& odometry, double time_s) {
+SeenObstacles seen_at(const core::DepthScan& scan, const core::Pose2& odometry, double time_s,
+                      const core::Pose2& pose = core::Pose2{}) {
   SeenObstacles seen;
   seen.time_s = time_s;
   seen.scan = &scan;
   seen.odometry = odometry;
+  seen.pose = pose;
   return seen;
 }
 
@@ -97,6 +99,62 @@ TEST(RecentObstacles, AnObstacleSeenAMomentAgoStaysWhereItIsRelativeToTheRobotWh
   EXPECT_GT(recent.cells_stamped(), 0U);
   // The input grid is untouched.
   EXPECT_FALSE(occupied_at(grid.view(), {2.25, 3.3}));
+}
+
+// A look (two full turns in place) turns odometry's heading 0.25 rad against the estimate's,
+// which the landmarks hold; then the robot drives 0.6 m towards a jamb it saw 1.05 m ahead
+// before the look. Kept in the odometry frame the jamb is stamped 0.2 m to the side of where it
+// stands; in the layer frame of recent_obstacle_estimate_heading, 0.45 m ahead, where it is.
+TEST(RecentObstacles, WithTheEstimatesHeadingATurnInPlaceDoesNotSwingThePoints) {
+  const TestGrid grid(60, 60, CellState::free);
+  const core::DepthScan jamb = wall_ahead(1.05, 0.2);
+  const core::DepthScan nothing;
+  const double odometry_drift_rad = 0.25;
+  const auto after_look = [&](RecentObstacles& recent) {
+    recent.observe(seen_at(jamb, core::Pose2{}, 1.0, core::Pose2{2.0, 3.0, 0.0}));
+    for (int step = 1; step <= 16; ++step) {
+      const double turned = step * core::kPi / 4.0;
+      const core::Pose2 odometry{0.0, 0.0, turned + odometry_drift_rad * step / 16.0};
+      recent.observe(seen_at(nothing, odometry, 1.0 + step, core::Pose2{2.0, 3.0, turned}));
+    }
+    const core::Pose2 odometry_now = core::Pose2{0.0, 0.0, odometry_drift_rad}.compose(core::Pose2{0.6, 0.0, 0.0});
+    return recent.stamp(grid.view(), core::Pose2{2.6, 3.0, 0.0}, odometry_now, 20.0);
+  };
+  core::ExploreConfig config = recent_config();
+  RecentObstacles in_odometry(config, 60, 60);
+  const GridView swung = after_look(in_odometry);
+  EXPECT_FALSE(occupied_at(swung, {3.05, 3.05}));
+  EXPECT_FALSE(occupied_at(swung, {3.05, 2.95}));
+  EXPECT_TRUE(occupied_at(swung, {3.0, 2.8}));
+  config.recent_obstacle_estimate_heading = true;
+  RecentObstacles in_layer(config, 60, 60);
+  const GridView held = after_look(in_layer);
+  EXPECT_TRUE(occupied_at(held, {3.05, 3.05}));
+  EXPECT_TRUE(occupied_at(held, {3.05, 2.95}));
+  EXPECT_FALSE(occupied_at(held, {3.0, 2.8}));
+}
+
+// In the layer frame a stretch driven between scans is the odometry's chord turned by the
+// estimate's heading at the stretch's start, whatever the odometry's heading there.
+TEST(RecentObstacles, WithTheEstimatesHeadingTheOdometrysTranslationIsKept) {
+  core::ExploreConfig config = recent_config();
+  config.recent_obstacle_estimate_heading = true;
+  RecentObstacles recent(config, 80, 80);
+  const TestGrid grid(80, 80, CellState::free);
+  const core::DepthScan jamb = wall_ahead(1.05, 0.2);
+  const core::DepthScan nothing;
+  const core::Pose2 odometry_then{5.0, -1.0, 1.0};  // odometry's own frame, its heading 1 rad off
+  recent.observe(seen_at(jamb, odometry_then, 1.0, core::Pose2{2.0, 3.0, 0.0}));
+  // 0.5 m ahead, then a quarter turn left and 0.3 m on, by odometry.
+  const core::Pose2 odometry_mid = odometry_then.compose(core::Pose2{0.5, 0.0, core::kPi / 2.0});
+  recent.observe(seen_at(nothing, odometry_mid, 2.0, core::Pose2{2.4, 3.1, core::kPi / 2.0}));
+  const core::Pose2 odometry_now = odometry_mid.compose(core::Pose2{0.3, 0.0, 0.0});
+  // The estimate moved to another lineage meanwhile (0.3 m off); the jamb stays 0.3 m behind
+  // the robot and 0.55 m to its right, as the odometry drove.
+  const core::Pose2 pose_now{2.5, 3.6, core::kPi / 2.0};
+  const GridView stamped = recent.stamp(grid.view(), pose_now, odometry_now, 3.0);
+  EXPECT_TRUE(occupied_at(stamped, pose_now.transform_point({-0.3, -0.55})));
+  EXPECT_FALSE(occupied_at(stamped, {3.05, 3.0}));  // where the first lineage's pose saw it
 }
 
 TEST(RecentObstacles, ACellTheGridHoldsOccupiedAlreadyNeedsNoCopy) {

@@ -390,6 +390,7 @@ void Stack::keep_seen_obstacles(std::int64_t frame_ns) {
   seen_scan_ = scan_;  // same column count: no allocation
   seen_.scan = &seen_scan_;
   seen_.odometry = odometry_at_update_;
+  seen_.pose = pose_at_update_;
 }
 
 core::Status Stack::grid_rollup() {

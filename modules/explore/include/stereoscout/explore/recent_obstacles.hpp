@@ -16,6 +16,12 @@
 // every column around its bearing, farther than the matcher's near limit): a person who walked
 // on, a stray match. Otherwise after recent_obstacle_s, or once the odometry has driven
 // recent_obstacle_travel_m since it was kept (its drift grows with distance, not time).
+//
+// With recent_obstacle_estimate_heading the points are kept in a layer frame instead: its
+// heading is the estimate's, its translation the odometry's, each stretch driven between scans
+// turned by the estimate's heading at the stretch's start. Odometry's heading drifts most in a
+// turn in place (a look), where its translation hardly moves; the filter's heading is held by
+// the landmarks.
 // Buffers are allocated by the constructor; observe() and stamp() allocate nothing.
 
 #include <cstddef>
@@ -48,14 +54,16 @@ class RecentObstacles {
 
   bool enabled() const { return keep_s_ > 0.0; }
 
-  // A new scan (seen.scan, taken at seen.odometry; a scan already observed is ignored):
+  // A new scan (seen.scan, taken at seen.odometry and seen.pose; a scan already observed is
+  // ignored):
   // forgets the kept points it saw past, then keeps its obstacle columns at the camera's
   // height within recent_obstacle_range_m of the camera.
   void observe(const SeenObstacles& seen);
   // Forgets points older than recent_obstacle_s or kept more than recent_obstacle_travel_m of
   // driving ago, then returns `grid` with the cells holding recent_obstacle_min_points kept
   // points occupied, the points placed from `pose` (the robot's map pose now) by the odometry
-  // since (`odometry`: the odometry pose now): a copy in the memory's own buffer, or `grid`
+  // since (`odometry`: the odometry pose now; its heading not used with
+  // recent_obstacle_estimate_heading): a copy in the memory's own buffer, or `grid`
   // itself when no cell changes (or it is larger than the buffer, counted). Valid until the
   // next call.
   GridView stamp(const GridView& grid, const core::Pose2& pose, const core::Pose2& odometry, double time_s);
@@ -71,7 +79,7 @@ class RecentObstacles {
 
  private:
   struct Point {
-    Eigen::Vector2d odometry_xy = Eigen::Vector2d::Zero();
+    Eigen::Vector2d layer_xy = Eigen::Vector2d::Zero();  // in the layer frame (layer_pose())
     double time_s = 0.0;
     double driven_m = 0.0;  // the odometry path length when it was kept
   };
@@ -82,8 +90,12 @@ class RecentObstacles {
     bool measured = false;
   };
 
-  void forget_seen_past(const core::DepthScan& scan, const core::Pose2& odometry);
-  void keep_columns(const core::DepthScan& scan, const core::Pose2& odometry, double time_s);
+  // The robot's pose in the frame the points are kept in: the odometry pose, or with
+  // estimate_heading_ the layer pose at the last scan moved by the odometry's translation since,
+  // with the estimate's heading (`pose`).
+  core::Pose2 layer_pose(const core::Pose2& pose, const core::Pose2& odometry) const;
+  void forget_seen_past(const core::DepthScan& scan, const core::Pose2& layer);
+  void keep_columns(const core::DepthScan& scan, const core::Pose2& layer, double time_s);
   bool outlived(const Point& point, double time_s) const;  // past either limit
   void drop_oldest(std::size_t count);
   static int bin_of(double bearing_rad);
@@ -92,12 +104,14 @@ class RecentObstacles {
   double travel_m_ = 0.0;  // 0: no distance limit
   double range_m_ = 0.0;
   int min_points_ = 1;
+  bool estimate_heading_ = false;
   std::size_t capacity_ = 0;
   std::unique_ptr<Point[]> points_;  // oldest first
   std::size_t size_ = 0;
   BearingBin bins_[kBearingBins];
   double last_scan_time_s_ = -1.0;
   core::Pose2 last_scan_odometry_;
+  core::Pose2 last_scan_layer_;
   double driven_m_ = 0.0;
   // stamp(): per-cell counts, reset through the list of cells touched.
   std::size_t cell_capacity_ = 0;

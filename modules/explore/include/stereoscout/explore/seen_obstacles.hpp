@@ -22,10 +22,11 @@ struct SeenObstacles {
   const Eigen::Vector2d* points = nullptr;
   std::size_t count = 0;
   double time_s = 0.0;  // when the scan's stereo pair was captured
-  // The scan itself (robot frame) and the odometry pose at its capture, for the recent
-  // obstacle layer (recent_obstacles.hpp); null when there is none.
+  // The scan itself (robot frame), and the odometry pose and the estimate's pose at its
+  // capture, for the recent obstacle layer (recent_obstacles.hpp); null when there is none.
   const core::DepthScan* scan = nullptr;
   core::Pose2 odometry;
+  core::Pose2 pose;
 };
 
 // Writes into `points` (room for `capacity`) the scan's obstacle columns that stand at the
