@@ -81,6 +81,10 @@ Explorer::Explorer(const ExploreParams& params)
       door_axis_(params),
       plan_(static_cast<std::size_t>(params.explore.max_plan_waypoints)) {}
 
+Eigen::Vector2d Explorer::stall_position(const ExploreInput& input) const {
+  return params_.explore.stall_from_odometry ? position_of(input.odometry) : position_of(input.pose);
+}
+
 Eigen::Vector2i Explorer::cell_of(const core::Pose2& pose) const { return map_.grid().cell_of(position_of(pose)); }
 
 void Explorer::note(ExploreEventKind kind, const ExploreInput& input) {
@@ -97,7 +101,7 @@ ExploreOutput Explorer::step(const ExploreInput& input) {
   if (!started_) start(input);
   trail_.record(position_of(input.pose));
   recent_.observe(input.seen);
-  stalled_ = stall_.stalled(input.time_s, position_of(input.pose));
+  stalled_ = stall_.stalled(input.time_s, stall_position(input));
   ExploreOutput output;
   if (input.emergency_stop) {
     // Halt within this very tick: zero velocity, pan held where it is; the state is kept so
@@ -106,7 +110,7 @@ ExploreOutput Explorer::step(const ExploreInput& input) {
     output.pan_target_rad = input.pan_rad;
     output.state = state_;
     rebuild_needed_ = rebuild_needed_ || input.grid_updated;
-    stall_.commanded(input.time_s, position_of(input.pose), 0.0);
+    stall_.commanded(input.time_s, stall_position(input), 0.0);
     return output;
   }
   if (backing_off_) {
@@ -115,7 +119,7 @@ ExploreOutput Explorer::step(const ExploreInput& input) {
     if (!back_off_step(input, output)) stop_and_look(input, output, 0.0);
     output.pan_target_rad = pan_target_rad_;
     output.state = state_;
-    stall_.commanded(input.time_s, position_of(input.pose), output.drive.linear_mps);
+    stall_.commanded(input.time_s, stall_position(input), output.drive.linear_mps);
     return output;
   }
   if (input.grid_updated || rebuild_needed_) rebuild(input);
@@ -130,7 +134,7 @@ ExploreOutput Explorer::step(const ExploreInput& input) {
   if (state_ == ExploreState::drive || state_ == ExploreState::returning) drive_step(input, output);
   output.pan_target_rad = pan_target_rad_;
   output.state = state_;
-  stall_.commanded(input.time_s, position_of(input.pose), output.drive.linear_mps);
+  stall_.commanded(input.time_s, stall_position(input), output.drive.linear_mps);
   return output;
 }
 

@@ -476,6 +476,56 @@ TEST(Explorer, AStallMarksTheContactAndThePlanLeadsAroundIt) {
   }
 }
 
+// The robot drives on at the commanded speed by odometry while the pose estimate, corrected at
+// an update, steps 0.1 m back along the way 0.7 s in (office seed 1 at 222.7 s). Returns the
+// stalls in the first second (one stall window).
+std::uint64_t stalls_after_a_correction_back(bool stall_from_odometry) {
+  Corridor scene;
+  ExploreParams params = no_look_params(100, 60);
+  params.explore.stall_from_odometry = stall_from_odometry;
+  Explorer explorer(params);
+  double x = 1.52;
+  ExploreInput input = input_at(scene.grid.view(), x, 3.0, 0.0, 0.0, true);
+  input.odometry = input.pose;
+  double linear_mps = explorer.step(input).drive.linear_mps;
+  for (double time_s = 0.05; time_s < 1.025; time_s += 0.05) {
+    x += 0.05 * linear_mps;
+    const double correction_m = time_s >= 0.7 ? -0.1 : 0.0;
+    input = input_at(scene.grid.view(), x + correction_m, 3.0, 0.0, time_s, false);
+    input.odometry = core::Pose2{x, 3.0, 0.0};
+    linear_mps = explorer.step(input).drive.linear_mps;
+  }
+  return explorer.counters().stalls;
+}
+
+// With stall_from_odometry a correction of the estimate is no stall; without, it is one.
+TEST(Explorer, WithStallFromOdometryAnEstimateCorrectedBackIsNoStall) {
+  EXPECT_EQ(stalls_after_a_correction_back(false), 1U);
+  EXPECT_EQ(stalls_after_a_correction_back(true), 0U);
+}
+
+// With stall_from_odometry a robot whose wheels stand still stalls as before.
+TEST(Explorer, WithStallFromOdometryARobotThatDoesNotMoveStalls) {
+  Corridor scene;
+  ExploreParams params = no_look_params(100, 60);
+  params.explore.stall_from_odometry = true;
+  params.explore.stall_back_off_m = 0.0;
+  Explorer explorer(params);
+  ExploreInput input = input_at(scene.grid.view(), 1.52, 3.0, 0.0, 0.0, true);
+  input.odometry = core::Pose2{7.0, -2.0, 1.0};  // odometry's own frame
+  ASSERT_GT(explorer.step(input).drive.linear_mps, 0.0);
+  double time_s = 0.0;
+  while (explorer.counters().stalls == 0 && time_s < 5.0) {
+    time_s += 0.05;
+    input.time_s = time_s;
+    input.grid_updated = false;
+    input.pose.x += 0.006;  // the estimate drifts on; the wheels stand still
+    explorer.step(input);
+  }
+  EXPECT_EQ(explorer.counters().stalls, 1U);
+  EXPECT_LE(time_s, 2.0 * params.explore.stall_window_s + 0.1);
+}
+
 // A 10 x 6 m room split by a thin wall at x = 3 m with a 0.9 m door (rows 26-34); the unknown
 // beyond x = 8 m lies behind the door. The robot is narrower than the default (0.33 m) so that
 // no clearance lies on the lethal distance and the scene's passable cells are clear-cut.

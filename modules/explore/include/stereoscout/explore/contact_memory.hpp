@@ -8,7 +8,8 @@
 // plan leads around them.
 //
 // StallDetector compares, over windows of stall_window_s, the forward travel commanded with
-// the travel the pose shows (the stack's pose follows odometry between updates): stalled when
+// the travel the explorer hands it: the pose's (the stack's pose follows odometry between
+// updates and is corrected at each), or with stall_from_odometry the odometry's: stalled when
 // less than stall_progress_fraction of it was travelled. A window is judged once it has
 // commanded at least stall_min_commanded_m, so a slow command stretches it. Any tick without
 // a forward command starts a new window, so turns in place and looks never count.

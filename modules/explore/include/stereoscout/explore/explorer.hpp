@@ -171,6 +171,8 @@ class Explorer {
   bool scan_guard_active(const ExploreInput& input) const;
   bool scan_blocks_stretch(const ExploreInput& input) const;
   Eigen::Vector2i cell_of(const core::Pose2& pose) const;
+  // Where the stall detector measures the travel from (explore.stall_from_odometry).
+  Eigen::Vector2d stall_position(const ExploreInput& input) const;
   void note(ExploreEventKind kind, const ExploreInput& input);
 
   ExploreParams params_;
