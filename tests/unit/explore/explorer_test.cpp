@@ -29,6 +29,7 @@ ExploreInput input_at(const GridView& grid, double x, double y, double theta, do
   ExploreInput input;
   input.time_s = time_s;
   input.pose = core::Pose2{x, y, theta};
+  input.odometry = input.pose;  // the wheels went where the estimate did: no correction
   input.grid = grid;
   input.grid_updated = updated;
   return input;
@@ -303,8 +304,11 @@ TEST(Explorer, PlansKeepClearOfWhatARecentScanSawWhereTheGridHoldsNothing) {
     params.explore.recent_obstacle_s = keep_s;
     Explorer explorer(params);
     ExploreInput input = input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.0, true);
+    const core::Pose2 odometry = input.odometry;
     input.seen.scan = &scan;
     input.seen.time_s = 0.0;
+    input.seen.pose = input.pose;
+    input.seen.odometry = odometry;
     explorer.step(input);
     ASSERT_EQ(explorer.state(), ExploreState::drive);
     const double radius = params.robot_radius_m;
@@ -317,6 +321,8 @@ TEST(Explorer, PlansKeepClearOfWhatARecentScanSawWhereTheGridHoldsNothing) {
     EXPECT_GT(explorer.recent_obstacles().cells_stamped(), 0U);
     // The estimate jumps to (1.5, 3.3); odometry did not move.
     input = input_at(scene.grid.view(), 1.5, 3.3, 0.0, 1.0, true);
+    input.odometry = odometry;
+    input.seen.odometry = odometry;
     input.seen.scan = &scan;
     input.seen.time_s = 0.0;  // the same scan: not observed again
     explorer.step(input);

@@ -8,8 +8,9 @@
 // plan leads around them.
 //
 // StallDetector compares, over windows of stall_window_s, the forward travel commanded with
-// the travel the explorer hands it: the pose's (the stack's pose follows odometry between
-// updates and is corrected at each), or with stall_from_odometry the odometry's: stalled when
+// the travel the explorer hands it: with stall_from_odometry (the default) the odometry's,
+// otherwise the pose estimate's (which follows odometry between updates but is corrected at
+// each, and a correction back along the way reads as a stall): stalled when
 // less than stall_progress_fraction of it was travelled. A window is judged once it has
 // commanded at least stall_min_commanded_m, so a slow command stretches it. Any tick without
 // a forward command starts a new window, so turns in place and looks never count.
