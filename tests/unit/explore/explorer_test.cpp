@@ -492,7 +492,6 @@ std::uint64_t stalls_after_a_correction_back(bool stall_from_odometry) {
   Explorer explorer(params);
   double x = 1.52;
   ExploreInput input = input_at(scene.grid.view(), x, 3.0, 0.0, 0.0, true);
-  input.odometry = input.pose;
   double linear_mps = explorer.step(input).drive.linear_mps;
   for (double time_s = 0.05; time_s < 1.025; time_s += 0.05) {
     x += 0.05 * linear_mps;
