@@ -120,13 +120,14 @@ UpdateResult ParticleFilter::update(const core::OdometryReading& odometry, Obser
   predict(last_odometry_.between(odometry.pose));
   last_odometry_ = odometry.pose;
   const std::size_t used = prepare_observations(observations, robot_from_sensor);
+  const double weight_scale = observation_weight_scale(used);
   for (Particle& p : *particles_) {
     const PlanarTransform map_from_robot(p.pose);
     double log_likelihood = 0.0;
     for (std::size_t k = 0; k < used; ++k) {
       log_likelihood += observe(p, map_from_robot, observations_[k]);
     }
-    p.log_weight += log_likelihood;
+    p.log_weight += weight_scale * log_likelihood;
   }
   extend_trajectories(odometry.timestamp_ns);
   normalise_weights();
@@ -169,6 +170,13 @@ std::size_t ParticleFilter::prepare_observations(ObservationList observations,
   }
   sort_by_landmark_id(observations_);
   return observations_.size();
+}
+
+double ParticleFilter::observation_weight_scale(std::size_t used) {
+  const auto independent = static_cast<std::size_t>(std::max(0, config_.independent_observations));
+  if (independent == 0 || used <= independent) return 1.0;
+  ++counters_.updates_weighed_as_fewer;
+  return static_cast<double>(independent) / static_cast<double>(used);
 }
 
 // Paper Algorithm 1 for one particle and one observation; returns its log-likelihood (eq. 7,

@@ -302,6 +302,44 @@ TEST(ParticleFilter, WithAMarginTheEstimateLeavesItsLineageOnlyWhenItDiesOut) {
   EXPECT_LT(kept.switches, ml.switches);
 }
 
+// Log-weights after a noisy drive round 12 landmarks without resampling.
+std::vector<double> log_weights_after_drive(int independent_observations, std::uint64_t* weighed_as_fewer) {
+  core::FilterConfig config = small_config(40);
+  config.motion_noise_translation_per_m = 0.1;
+  config.motion_noise_rotation_per_rad = 0.1;
+  config.resample_ess_fraction = 0.0;
+  config.independent_observations = independent_observations;
+  ParticleFilter filter(config, core::CameraMount{}, 17);
+  filter.start(odometry_at(0, true_pose(0)), true_pose(0));
+  for (int step = 1; step <= 8; ++step) {
+    const auto observations = observe_all(true_pose(step), Eigen::Isometry3d::Identity(), 12, step, 0.05);
+    filter.update(odometry_at(step, true_pose(step)), as_list(observations), Eigen::Isometry3d::Identity());
+  }
+  std::vector<double> weights;
+  for (std::size_t slot = 0; slot < filter.particle_count(); ++slot) {
+    weights.push_back(filter.particle(slot).log_weight);
+  }
+  *weighed_as_fewer = filter.counters().updates_weighed_as_fewer;
+  return weights;
+}
+
+TEST(ParticleFilter, AnUpdateWithMoreObservationsThanIndependentWeighsAsThatMany) {
+  std::uint64_t fewer = 0;
+  const std::vector<double> independent = log_weights_after_drive(0, &fewer);
+  EXPECT_EQ(fewer, 0u);
+  const std::vector<double> as_three = log_weights_after_drive(3, &fewer);
+  EXPECT_EQ(fewer, 8u);
+  const std::vector<double> as_twelve = log_weights_after_drive(12, &fewer);
+  EXPECT_EQ(fewer, 0u);  // not more than 12: eq. 7 as it stands
+  double spread = 0.0;
+  for (std::size_t slot = 0; slot < independent.size(); ++slot) {
+    EXPECT_NEAR(as_three[slot], independent[slot] * 3.0 / 12.0, 1e-9) << "slot " << slot;
+    EXPECT_EQ(as_twelve[slot], independent[slot]);
+    spread = std::min(spread, independent[slot]);
+  }
+  EXPECT_LT(spread, -1.0);  // the weights did differ
+}
+
 struct FreedNodes {
   int count = 0;
   static void on_free(void* context, const TrajectoryNode& node) {

@@ -7,7 +7,8 @@
 //   2. observation update (paper Algorithm 1): per particle and observation, the most likely
 //      estimate in the identity's list (Mahalanobis distance, gated) is EKF-updated, after
 //      path copying of whatever the particle shares; no estimate in the gate adds a new one;
-//      the weight gains the observation's log-likelihood (eq. 7 in log space, floored);
+//      the weight gains the observation's log-likelihood (eq. 7 in log space, floored; the
+//      sum scaled down when there are more than filter.independent_observations);
 //   3. ancestry: every particle gets a trajectory node (pose, time, update index);
 //   4. resampling: systematic, when the effective sample size falls below the configured
 //      fraction, with the stream (seed, {resampling, update_index, 0}).
@@ -61,6 +62,7 @@ struct FilterCounters {
   std::uint64_t estimates_refused_list_full = 0;  // identity already holds estimates_per_landmark
   std::uint64_t changes_refused_pool_full = 0;    // landmark pools short (see LandmarkStore)
   std::uint64_t log_likelihood_floored = 0;       // observation likelihoods raised to the floor
+  std::uint64_t updates_weighed_as_fewer = 0;     // more observations than filter.independent_observations
   // The estimate's lineage (estimate_node()): updates whose estimate does not descend from
   // the previous update's, and how many updates back their common ancestor lay (summed, max).
   std::uint64_t estimate_lineage_switches = 0;
@@ -129,6 +131,8 @@ class ParticleFilter {
   void release_particles(core::FixedVector<Particle>& particles);
   void predict(const core::Pose2& motion);
   std::size_t prepare_observations(ObservationList observations, const Eigen::Isometry3d& robot_from_sensor);
+  // What one update's summed log-likelihoods are scaled by (filter.independent_observations).
+  double observation_weight_scale(std::size_t used);
   double observe(Particle& particle, const PlanarTransform& map_from_robot, const RobotFrameObservation& observation);
   void extend_trajectories(std::int64_t timestamp_ns);
   void normalise_weights();

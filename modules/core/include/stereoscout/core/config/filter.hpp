@@ -21,6 +21,7 @@ struct FilterConfig {
   int max_observations_per_update = 1000;
   int export_min_observations = 4;
   double estimate_lineage_margin = 0.0;
+  int independent_observations = 0;
 };
 
 inline void describe(ConfigVisitor& v, FilterConfig& c) {
@@ -41,6 +42,7 @@ inline void describe(ConfigVisitor& v, FilterConfig& c) {
   v.integer_field("max_observations_per_update", c.max_observations_per_update, {1, 100000, "", "Landmark observations one update takes; more are dropped and counted."});
   v.integer_field("export_min_observations", c.export_min_observations, {1, 1000000, "", "An estimate goes into landmarks.ply once it has fused this many observations (4: seen more than 3 times)."});
   v.number("estimate_lineage_margin", c.estimate_lineage_margin, {0.0, 100.0, "", "The particle the grid and the explorer follow (the estimate) stays on the lineage it followed while a particle descending from it has a log-weight within this of the best; otherwise, and at 0, it is the ML particle (paper V). The ML particle after a resampling is the one whose single update was likeliest, often of another lineage a few centimetres away, and the grid follows it: a wall held, then a gap. Counted either way in report.json's filter.estimate_lineage_switches. At 10, four changes in five fewer and half the grids held, but no better coverage or fewer contacts on eight runs (docs/results.md), so 0."});
+  v.integer_field("independent_observations", c.independent_observations, {0, 100000, "", "An update with more observations than this weighs its particles as if it had this many: the sum of their log-likelihoods is scaled by this number over theirs. Eq. 7 takes the observations of one frame as independent, but their errors share the frame's (the stereo calibration, the pose they were seen from), and 200 of them weighed as independent leave one particle of 1000 at each update, the cloud narrower than the estimate's error. Every observation still updates its landmark. 0: every observation independent (paper eq. 7)."});
   v.require(c.particles <= c.particle_capacity, "particles", "must not exceed particle_capacity");
   v.end_section();
 }
