@@ -142,6 +142,9 @@ RunResult run_landmark_slam(const Dataset& dataset, const RunOptions& options) {
   filter_config.motion_noise_rotation_per_rad = options.noise_rotation_per_rad;
   filter_config.motion_noise_rotation_per_m = options.noise_rotation_per_m;
   filter_config.motion_noise_translation_per_rad = options.noise_translation_per_rad;
+  filter_config.motion_noise_translation_per_sqrt_m = 0.0;
+  filter_config.motion_noise_rotation_per_sqrt_rad = 0.0;
+  filter_config.motion_noise_rotation_per_sqrt_m = 0.0;
   auto filter = std::make_unique<slam::ParticleFilter>(filter_config, core::CameraMount{}, options.seed);
   OdometryIntegrator odometry(dataset.odometry);
   filter->start(core::OdometryReading{to_nanoseconds(start_s), 0, {}});

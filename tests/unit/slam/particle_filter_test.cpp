@@ -407,6 +407,48 @@ TEST(ParticleFilter, FullPoolsDegradeAndAreCounted) {
   EXPECT_LE(filter.landmarks().estimates_in_use(), 25u);
 }
 
+// Sample standard deviations of sample_motion's translation (x) and rotation over many draws.
+Eigen::Vector2d sampled_sigmas(const core::Pose2& motion, const MotionNoise& noise) {
+  constexpr int kDraws = 40000;
+  double sum_x = 0.0, sum_xx = 0.0, sum_t = 0.0, sum_tt = 0.0;
+  for (int k = 0; k < kDraws; ++k) {
+    core::RandomStream stream(5, {core::stream_purpose::test, static_cast<std::uint32_t>(k), 0});
+    const core::Pose2 sample = sample_motion(motion, noise, stream);
+    const double x = sample.x - motion.x;
+    const double t = sample.theta - motion.theta;
+    sum_x += x;
+    sum_xx += x * x;
+    sum_t += t;
+    sum_tt += t * t;
+  }
+  const double n = kDraws;
+  return {std::sqrt(sum_xx / n - (sum_x / n) * (sum_x / n)), std::sqrt(sum_tt / n - (sum_t / n) * (sum_t / n))};
+}
+
+TEST(MotionModel, RandomWalkTermsAddTheirVarianceToTheLinearTerms) {
+  MotionNoise noise;
+  noise.translation_per_m = 0.05;
+  noise.rotation_per_rad = 0.05;
+  noise.rotation_per_m = 0.02;
+  const core::Pose2 step{0.04, 0.0, 0.07};  // one slow update: 4 cm and 4 degrees
+  const Eigen::Vector2d linear = sampled_sigmas(step, noise);
+  EXPECT_NEAR(linear.x(), 0.05 * 0.04, 0.03 * 0.05 * 0.04);
+  EXPECT_NEAR(linear.y(), 0.05 * 0.07 + 0.02 * 0.04, 0.03 * (0.05 * 0.07 + 0.02 * 0.04));
+
+  noise.translation_per_sqrt_m = 0.03;
+  noise.rotation_per_sqrt_rad = 0.05;
+  noise.rotation_per_sqrt_m = 0.015;
+  const Eigen::Vector2d walked = sampled_sigmas(step, noise);
+  const double translation = std::sqrt(0.002 * 0.002 + 0.03 * 0.03 * 0.04);
+  const double linear_rotation = 0.05 * 0.07 + 0.02 * 0.04;
+  const double rotation = std::sqrt(linear_rotation * linear_rotation + 0.05 * 0.05 * 0.07 + 0.015 * 0.015 * 0.04);
+  EXPECT_NEAR(walked.x(), translation, 0.03 * translation);
+  EXPECT_NEAR(walked.y(), rotation, 0.03 * rotation);
+  // On a short step the random walk dominates: about three times the linear terms here.
+  EXPECT_GT(walked.x(), 2.5 * linear.x());
+  EXPECT_GT(walked.y(), 2.5 * linear.y());
+}
+
 TEST(ObservationModel, CameraMountComesFromTheCameraConfig) {
   core::CameraConfig camera;
   camera.mount_x_m = 0.2;

@@ -1,8 +1,9 @@
 #pragma once
 // The proposal distribution: the odometry motion model (paper eq. 5-6, q = p(s_t | s_t-1, u_t)).
 // The odometry's motion between two updates is perturbed by zero-mean Gaussian noise whose
-// standard deviation grows with the distance driven and the angle turned (config filter.
-// motion_noise_*), then composed onto the particle's pose.
+// standard deviation grows with the distance driven and the angle turned, and whose variance
+// may also grow with them as a random walk's (config filter.motion_noise_*), then composed
+// onto the particle's pose.
 
 #include "stereoscout/core/config/filter.hpp"
 #include "stereoscout/core/geometry.hpp"
@@ -15,6 +16,10 @@ struct MotionNoise {
   double rotation_per_rad = 0.0;
   double rotation_per_m = 0.0;
   double translation_per_rad = 0.0;
+  // Random-walk terms: variance per metre or radian, as standard deviation per square root.
+  double translation_per_sqrt_m = 0.0;
+  double rotation_per_sqrt_rad = 0.0;
+  double rotation_per_sqrt_m = 0.0;
 };
 
 MotionNoise motion_noise_from_config(const core::FilterConfig& config);

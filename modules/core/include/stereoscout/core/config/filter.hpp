@@ -14,6 +14,9 @@ struct FilterConfig {
   double motion_noise_rotation_per_rad = 0.05;
   double motion_noise_rotation_per_m = 0.02;
   double motion_noise_translation_per_rad = 0.01;
+  double motion_noise_translation_per_sqrt_m = 0.0;
+  double motion_noise_rotation_per_sqrt_rad = 0.0;
+  double motion_noise_rotation_per_sqrt_m = 0.0;
   int landmark_node_capacity = 4000000;
   int landmark_estimate_capacity = 4000000;
   int trajectory_node_capacity = 1000000;
@@ -35,6 +38,9 @@ inline void describe(ConfigVisitor& v, FilterConfig& c) {
   v.number("motion_noise_rotation_per_rad", c.motion_noise_rotation_per_rad, {0.0, 2.0, "rad/rad", "Standard deviation of rotation noise per radian turned."});
   v.number("motion_noise_rotation_per_m", c.motion_noise_rotation_per_m, {0.0, 2.0, "rad/m", "Standard deviation of rotation noise per metre driven."});
   v.number("motion_noise_translation_per_rad", c.motion_noise_translation_per_rad, {0.0, 2.0, "m/rad", "Standard deviation of translation noise per radian turned."});
+  v.number("motion_noise_translation_per_sqrt_m", c.motion_noise_translation_per_sqrt_m, {0.0, 2.0, "m/sqrt(m)", "Translation noise that grows as a random walk: its variance is this squared per metre driven, added to the variance of the per-metre terms. Wheel odometry's error adds up over many small steps as a random walk, and the per-metre terms, sized for one update's motion, give a particle cloud that spreads too slowly over the many short updates of a slow robot. 0: off."});
+  v.number("motion_noise_rotation_per_sqrt_rad", c.motion_noise_rotation_per_sqrt_rad, {0.0, 2.0, "rad/sqrt(rad)", "Rotation noise as a random walk: variance this squared per radian turned, added as above. 0: off."});
+  v.number("motion_noise_rotation_per_sqrt_m", c.motion_noise_rotation_per_sqrt_m, {0.0, 2.0, "rad/sqrt(m)", "Rotation noise as a random walk: variance this squared per metre driven, added as above. 0: off."});
   v.integer_field("landmark_node_capacity", c.landmark_node_capacity, {1, 1000000000, "", "Nodes of the shared landmark trees of all particles (FastSLAM tree, O(N log K)); when short, a particle's change to one landmark is refused and counted."});
   v.integer_field("landmark_estimate_capacity", c.landmark_estimate_capacity, {1, 1000000000, "", "3D Gaussian landmark estimates shared by all particles; when short, the new estimate or update is refused and counted."});
   v.integer_field("trajectory_node_capacity", c.trajectory_node_capacity, {1, 1000000000, "", "Nodes of the particles' ancestry tree (one per particle per update, freed when no particle descends from them); when fewer than `particles` are free the update is refused and counted, and the motion carries over to the next."});
