@@ -331,13 +331,13 @@ TEST(ParticleFilter, AnUpdateWithMoreObservationsThanIndependentWeighsAsThatMany
   EXPECT_EQ(fewer, 8u);
   const std::vector<double> as_twelve = log_weights_after_drive(12, &fewer);
   EXPECT_EQ(fewer, 0u);  // not more than 12: eq. 7 as it stands
-  double spread = 0.0;
+  double lowest = 0.0;  // the best particle's log-weight is 0 after normalising
   for (std::size_t slot = 0; slot < independent.size(); ++slot) {
     EXPECT_NEAR(as_three[slot], independent[slot] * 3.0 / 12.0, 1e-9) << "slot " << slot;
     EXPECT_EQ(as_twelve[slot], independent[slot]);
-    spread = std::min(spread, independent[slot]);
+    lowest = std::min(lowest, independent[slot]);
   }
-  EXPECT_LT(spread, -1.0);  // the weights did differ
+  EXPECT_LT(lowest, -1.0);  // the weights did differ
 }
 
 struct FreedNodes {
