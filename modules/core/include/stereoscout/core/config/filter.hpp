@@ -33,7 +33,7 @@ inline void describe(ConfigVisitor& v, FilterConfig& c) {
   v.integer_field("particle_capacity", c.particle_capacity, {1, 1000000, "", "Size of the particle pool fixed at start-up."});
   v.number("resample_ess_fraction", c.resample_ess_fraction, {0.0, 1.0, "", "Resample when the effective sample size falls below this fraction of the particles."});
   v.number("association_gate_chi2", c.association_gate_chi2, {0.1, 1000.0, "", "Mahalanobis gate for data association (3 DOF, 99%: 11.345)."});
-  v.number("min_log_likelihood", c.min_log_likelihood, {-1000.0, 0.0, "", "Floor on one observation's log-likelihood, so one outlier cannot kill a particle."});
+  v.number("min_log_likelihood", c.min_log_likelihood, {-1000.0, 0.0, "", "Floor on one observation's log-likelihood, so one outlier cannot kill a particle. At the gate's -chi2/2 (-5.6725) an observation outside the gate would weigh every particle alike: office seed 1 kept its pose, but the office's coverage fell and MRCLAM robot 1 lost its map on two seeds of three, whose identities are right and whose observations outside the gate say the pose is wrong (docs/results.md), so -10."});
   v.number("motion_noise_translation_per_m", c.motion_noise_translation_per_m, {0.0, 2.0, "m/m", "Standard deviation of translation noise per metre driven."});
   v.number("motion_noise_rotation_per_rad", c.motion_noise_rotation_per_rad, {0.0, 2.0, "rad/rad", "Standard deviation of rotation noise per radian turned."});
   v.number("motion_noise_rotation_per_m", c.motion_noise_rotation_per_m, {0.0, 2.0, "rad/m", "Standard deviation of rotation noise per metre driven."});
