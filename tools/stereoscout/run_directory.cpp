@@ -248,6 +248,7 @@ void write_counters(report::JsonWriter& json, const stack::Stack& stack) {
       .unsigned_integer("turns_to_face_plan", e.turns_to_face_plan)
       .unsigned_integer("stalls", e.stalls)
       .unsigned_integer("back_offs", e.back_offs)
+      .unsigned_integer("back_off_turns", e.back_off_turns)
       .unsigned_integer("contact_cells_recorded", stack.explorer().contacts().recorded())
       .unsigned_integer("contact_cells_held", stack.explorer().contacts().held())
       .unsigned_integer("contact_cells_repeated", stack.explorer().contacts().repeated())

@@ -763,8 +763,11 @@ TEST(Explorer, BacksOffOnlyIntoClearSpaceAndForALimitedTime) {
   Explorer explorer(params);
   explorer.step(input_at(walled.grid.view(), 1.5, 3.0, 0.0, 0.0, true));
   double time_s = 0.0;
-  EXPECT_EQ(stall_at(explorer, walled.grid.view(), 1.5, 3.0, 0.0, time_s).drive.linear_mps, 0.0);
+  const ExploreOutput refused = stall_at(explorer, walled.grid.view(), 1.5, 3.0, 0.0, time_s);
+  EXPECT_EQ(refused.drive.linear_mps, 0.0);
+  EXPECT_EQ(refused.drive.angular_rad_s, 0.0);  // every way back within 60 deg is shut too
   EXPECT_EQ(explorer.counters().back_offs, 1U);
+  EXPECT_EQ(explorer.counters().back_off_turns, 0U);
   // In open space, held still: backing off ends after 2 * 0.15 / 0.12 = 2.5 s.
   Corridor open;
   Explorer held(params);
@@ -774,6 +777,57 @@ TEST(Explorer, BacksOffOnlyIntoClearSpaceAndForALimitedTime) {
   const double started_s = time_s;
   while (held.step(input_at(open.grid.view(), 1.5, 3.0, 0.0, time_s, false)).drive.linear_mps < 0.0) time_s += 0.05;
   EXPECT_NEAR(time_s - started_s, 2.0 * params.explore.stall_back_off_m / params.max_speed_mps, 0.06);
+}
+
+// A cell behind-right that the disc would reach 0.15 m straight back (0.43 m from the centre
+// now, 0.32 m there): the robot turns in place to the right until the way back leads past it,
+// then backs off along its new heading. Turning left would bring the cell nearer.
+TEST(Explorer, TurnsInPlaceWhenTheWayStraightBackIsShut) {
+  const ExploreParams params = no_look_params(100, 60);
+  Corridor scene;
+  scene.grid.set(11, 27, CellState::occupied);  // centre (1.15, 2.75)
+  const Eigen::Vector2d cell(1.15, 2.75);
+  Explorer explorer(params);
+  explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.0, true));
+  double time_s = 0.0;
+  const ExploreOutput first = stall_at(explorer, scene.grid.view(), 1.5, 3.0, 0.0, time_s);
+  EXPECT_EQ(first.drive.linear_mps, 0.0);
+  EXPECT_EQ(first.drive.angular_rad_s, -params.max_turn_rate_rad_s);
+  EXPECT_EQ(explorer.counters().back_offs, 1U);
+  EXPECT_EQ(explorer.counters().back_off_turns, 1U);
+  Eigen::Vector2d robot(1.5, 3.0);
+  double theta = first.drive.angular_rad_s * 0.05;
+  double backed_m = 0.0;
+  for (int tick = 0; tick < 400; ++tick) {
+    time_s += 0.05;
+    const ExploreOutput output = explorer.step(input_at(scene.grid.view(), robot.x(), robot.y(), theta, time_s, false));
+    if (output.drive.linear_mps == 0.0 && output.drive.angular_rad_s == 0.0) break;
+    if (output.drive.linear_mps < 0.0) {
+      EXPECT_EQ(output.drive.angular_rad_s, 0.0);  // straight back, no turning
+    }
+    theta += output.drive.angular_rad_s * 0.05;
+    const Eigen::Vector2d move = output.drive.linear_mps * 0.05 * Eigen::Vector2d(std::cos(theta), std::sin(theta));
+    robot += move;
+    backed_m += move.norm();
+    EXPECT_GE((robot - cell).norm(), params.robot_radius_m);
+  }
+  // Towards 30 deg right (at 15 deg the whole back-off would pass the cell at 0.33 m), and
+  // no further than the first heading from which it clears it: about 19 deg.
+  EXPECT_LT(theta, -0.31);
+  EXPECT_GT(theta, -0.36);
+  EXPECT_NEAR(backed_m, params.explore.stall_back_off_m, 0.01);
+  EXPECT_LT(robot.x(), 1.5 - 0.1);
+  EXPECT_EQ(explorer.counters().stalls, 1U);
+  // Without the turn the back-off ends where it began.
+  ExploreParams straight = params;
+  straight.explore.stall_back_off_turn_deg = 0.0;
+  Explorer unturned(straight);
+  unturned.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.0, true));
+  time_s = 0.0;
+  const ExploreOutput refused = stall_at(unturned, scene.grid.view(), 1.5, 3.0, 0.0, time_s);
+  EXPECT_EQ(refused.drive.linear_mps, 0.0);
+  EXPECT_EQ(refused.drive.angular_rad_s, 0.0);
+  EXPECT_EQ(unturned.counters().back_off_turns, 0U);
 }
 
 // The speed the explorer commands at (1.5, 3.0) heading east in the corridor, right after

@@ -101,6 +101,7 @@ struct ExploreCounters {
   std::uint64_t return_failures = 0;  // no way back or no progress on it; given up at goal_failures_before_blacklist
   std::uint64_t looks_before_giving_up = 0;  // no goal, or no way back: one more look first
   std::uint64_t back_offs = 0;       // backed off after a stall
+  std::uint64_t back_off_turns = 0;  // ... turning in place first, the way straight back shut
   std::uint64_t contact_clears = 0;  // contacts forgotten (but repeated ones) before concluding "explored" or "no way back"
   std::uint64_t trace_crossings = 0;   // plans let cross old traces rather than conclude "no plan" or "nothing left"
   std::uint64_t trail_follows = 0;     // plans let follow the robot's own path rather than conclude "explored" or "no way back"
@@ -159,6 +160,10 @@ class Explorer {
   void drive_step(const ExploreInput& input, ExploreOutput& output);
   void stop_and_look(const ExploreInput& input, ExploreOutput& output, double turn_rad_s);
   void hold_for_scan(const ExploreInput& input);
+  void begin_back_off(const ExploreInput& input, ExploreOutput& output);
+  bool back_off_blocked(const ExploreInput& input, double heading_rad, double reach_m) const;
+  double whole_back_off_m() const;
+  void choose_back_off_heading(const ExploreInput& input);
   bool back_off_step(const ExploreInput& input, ExploreOutput& output);
   enum class Blocked : std::uint8_t { no, by_grid, by_scan };
   Blocked stretch_blocked(const GridView& grid, const ExploreInput& input) const;
@@ -214,6 +219,9 @@ class Explorer {
   bool backing_off_ = false;
   Eigen::Vector2d back_off_from_ = Eigen::Vector2d::Zero();
   double back_off_start_s_ = 0.0;
+  bool back_off_turning_ = false;      // turning in place first (stall_back_off_turn_deg)
+  double back_off_heading_rad_ = 0.0;  // ... to this heading
+  double back_off_turn_until_s_ = 0.0;  // ... for at most twice the time the turn needs
   bool fresh_look_ = false;         // a look ended here and no plan has been found since
   bool return_after_look_ = false;  // after the look: back on the way to the start
   bool resume_after_look_ = false;  // after the look: back on the way to the same goal
