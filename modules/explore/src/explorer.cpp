@@ -23,6 +23,8 @@ constexpr double kScanGuardDeep_m = 0.1;
 constexpr double kFacingPlan_rad = 0.05;
 // Back-off headings tried, from the stalled heading out to stall_back_off_turn_deg either side.
 constexpr double kBackOffTurnStep_deg = 15.0;
+// A way back is checked at points this many cells apart.
+constexpr double kBackOffCheckStep_cells = 0.5;
 // Goals tried per tick when planning to the best ones fails.
 constexpr int kGoalAttemptsPerTick = 4;
 
@@ -672,13 +674,14 @@ void Explorer::begin_back_off(const ExploreInput& input, ExploreOutput& output) 
 
 // True when the disc, backed straight off along heading_rad from where the robot stands,
 // touches something in the planning grid (or the latest scan) anywhere from kAheadCheck_m to
-// reach_m behind (every half cell): kAheadCheck_m is each tick's check, and
+// reach_m behind (every kBackOffCheckStep_cells): kAheadCheck_m is each tick's check, and
 // kAheadCheck_m + stall_back_off_m covers the checks of a whole back-off.
 bool Explorer::back_off_blocked(const ExploreInput& input, double heading_rad, double reach_m) const {
   const Eigen::Vector2d robot = position_of(input.pose);
   const GridView& grid = planning_on_copy_ ? planning_grid_ : input.grid;
   const Eigen::Vector2d back = -unit_towards(heading_rad);
-  for (double behind_m = kAheadCheck_m; behind_m <= reach_m + 1e-9; behind_m += 0.5 * grid.resolution_m) {
+  const double step_m = kBackOffCheckStep_cells * grid.resolution_m;
+  for (double behind_m = kAheadCheck_m; behind_m <= reach_m + 1e-9; behind_m += step_m) {
     if (disc_blocked(grid, robot + behind_m * back, robot, input) != Blocked::no) return true;
   }
   return false;
