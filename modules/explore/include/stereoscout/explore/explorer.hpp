@@ -162,7 +162,7 @@ class Explorer {
   void hold_for_scan(const ExploreInput& input);
   void begin_back_off(const ExploreInput& input, ExploreOutput& output);
   bool back_off_blocked(const ExploreInput& input, double heading_rad, double reach_m) const;
-  double whole_back_off_m() const;
+  double least_back_off_reach_m() const;
   void choose_back_off_heading(const ExploreInput& input);
   bool back_off_step(const ExploreInput& input, ExploreOutput& output);
   enum class Blocked : std::uint8_t { no, by_grid, by_scan };
