@@ -757,7 +757,8 @@ TEST(Explorer, BacksOffAfterAStallThenLooks) {
 // Backing off is blind but for the grid: it stops short where the disc behind would touch an
 // occupied cell, and after twice its time when the robot does not move.
 TEST(Explorer, BacksOffOnlyIntoClearSpaceAndForALimitedTime) {
-  const ExploreParams params = no_look_params(100, 60);
+  ExploreParams params = no_look_params(100, 60);
+  params.explore.stall_back_off_turn_deg = 60.0;  // no turn helps against a wall behind
   Corridor walled;
   walled.grid.fill(10, 1, 12, 59, CellState::occupied);  // a wall whose cells lie 0.45 m behind
   Explorer explorer(params);
@@ -783,7 +784,8 @@ TEST(Explorer, BacksOffOnlyIntoClearSpaceAndForALimitedTime) {
 // now, 0.32 m there): the robot turns in place to the right until the way back leads past it,
 // then backs off along its new heading. Turning left would bring the cell nearer.
 TEST(Explorer, TurnsInPlaceWhenTheWayStraightBackIsShut) {
-  const ExploreParams params = no_look_params(100, 60);
+  ExploreParams params = no_look_params(100, 60);
+  params.explore.stall_back_off_turn_deg = 60.0;
   Corridor scene;
   scene.grid.set(11, 27, CellState::occupied);  // centre (1.15, 2.75)
   const Eigen::Vector2d cell(1.15, 2.75);
