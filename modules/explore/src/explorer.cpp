@@ -27,7 +27,7 @@ constexpr double kBackOffTurnStep_deg = 15.0;
 constexpr double kBackOffCheckStep_cells = 0.5;
 // A heading turned to for a back-off must leave at least this part of it clear: any move out
 // of the wedge brings updates, and a whole clear back-off is rare in a door (office seed 1 with
-// the random walk: every turn of up to 60 deg met the corridor's far cells within 0.30 m).
+// the random walk: every turn of up to 60 deg met a cell within 0.30 m).
 constexpr double kBackOffLeastFraction = 0.5;
 // Goals tried per tick when planning to the best ones fails.
 constexpr int kGoalAttemptsPerTick = 4;
@@ -679,8 +679,8 @@ void Explorer::begin_back_off(const ExploreInput& input, ExploreOutput& output) 
 
 // True when the disc, backed straight off along heading_rad from where the robot stands,
 // touches something in the planning grid (or the latest scan) anywhere from kAheadCheck_m to
-// reach_m behind (every kBackOffCheckStep_cells, and at reach_m): kAheadCheck_m is each tick's check, and
-// kAheadCheck_m + a distance covers the checks of a back-off that far.
+// reach_m behind (every kBackOffCheckStep_cells, and at reach_m): kAheadCheck_m is each
+// tick's check, and kAheadCheck_m + a distance covers the checks of a back-off that far.
 bool Explorer::back_off_blocked(const ExploreInput& input, double heading_rad, double reach_m) const {
   const Eigen::Vector2d robot = position_of(input.pose);
   const GridView& grid = planning_on_copy_ ? planning_grid_ : input.grid;
