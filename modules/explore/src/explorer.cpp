@@ -51,8 +51,7 @@ Eigen::Vector2d unit_towards(double heading_rad) { return {std::cos(heading_rad)
 // standing (trace_memory.hpp).
 CameraWedge camera_wedge(const ExploreParams& params, const ExploreInput& input) {
   CameraWedge view;
-  view.position = position_of(input.pose) +
-                  params.camera_forward_m * Eigen::Vector2d(std::cos(input.pose.theta), std::sin(input.pose.theta));
+  view.position = position_of(input.pose) + params.camera_forward_m * unit_towards(input.pose.theta);
   view.heading_rad = input.pose.theta + input.pan_rad;
   view.half_fov_rad = params.camera_half_fov_rad;
   view.near_m = params.camera_near_m;
@@ -814,7 +813,7 @@ bool Explorer::scan_blocks_stretch(const ExploreInput& input) const {
 
 Explorer::Blocked Explorer::stretch_blocked(const GridView& grid, const ExploreInput& input) const {
   const Eigen::Vector2d robot = position_of(input.pose);
-  const Eigen::Vector2d ahead = robot + kAheadCheck_m * Eigen::Vector2d(std::cos(input.pose.theta), std::sin(input.pose.theta));
+  const Eigen::Vector2d ahead = robot + kAheadCheck_m * unit_towards(input.pose.theta);
   if (grid_blocks_disc(grid, ahead, robot, input.time_s)) return Blocked::by_grid;
   double travelled = 0.0;
   Eigen::Vector2d previous = robot;
