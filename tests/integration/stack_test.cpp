@@ -30,11 +30,13 @@ namespace fs = std::filesystem;
 constexpr const char* kWorld = test::kTwoRoomsWorld;
 
 // A small camera and map so that a run of a few simulated seconds takes seconds.
-std::string config_text(const std::string& world_path, int scan_history = 512, double lineage_margin = 0.0) {
+std::string config_text(const std::string& world_path, int scan_history = 512, double lineage_margin = 0.0,
+                        bool identity_gate = false) {
   return "%YAML:1.0\n"
          "run: {seed: 7, max_time_s: 12, world: \"" + world_path + "\"}\n"
          "camera: {width_px: 320, height_px: 240, focal_px: 200, principal_x_px: 159.5, principal_y_px: 119.5}\n"
-         "vision: {max_features: 300, dense_num_disparities: 32, max_disparity_px: 64}\n"
+         "vision: {max_features: 300, dense_num_disparities: 32, max_disparity_px: 64, identity_gate: " +
+         std::string(identity_gate ? "true" : "false") + "}\n"
          "filter: {particles: 20, particle_capacity: 20, landmark_node_capacity: 200000, "
          "landmark_estimate_capacity: 100000, trajectory_node_capacity: 20000, estimate_lineage_margin: " +
          std::to_string(lineage_margin) + "}\n"
@@ -116,7 +118,7 @@ TEST_F(StackRun, SameSeedSameOutputsNoHeapInLoopAndEveryReportKey) {
   EXPECT_EQ(report_number(a, "heap_allocations_in_loop"), 0.0) << a;
   for (const char* key : {"coverage", "ate_rmse_m", "odometry_ate_rmse_m", "map_agreement", "collisions",
                           "collision_events_people", "updates", "landmarks", "grids_held_mean", "grids_held_max",
-                          "resamplings", "sim_time_s", "wall_time_s"}) {
+                          "resamplings", "sim_time_s", "wall_time_s", "reobservation_consistency"}) {
     EXPECT_GE(report_number(a, key), 0.0) << key << " missing or null\n" << a;
   }
   // The budget check: generous budgets pass, 1 us budgets fail (no timing is asserted).
@@ -211,6 +213,30 @@ TEST_F(StackRun, WithALineageMarginTheGridChangesLineageLessOftenAndReplaysTheSa
   const test::CommandResult replayed = replay(dir_ / "live" / "sensors.log", "replay");
   ASSERT_EQ(replayed.exit_code, 0) << replayed.output;
   std::map<std::string, std::string> expected = output_digests(kept);
+  expected.erase("sensors.log");
+  EXPECT_EQ(output_digests(report("replay")), expected);
+}
+
+// vision.identity_gate: the index's identities split by place. The keys the simulator's truth
+// puts elsewhere than their landmark are fewer, and the run is as reproducible, replayable
+// and free of heap allocation as without it.
+TEST_F(StackRun, WithTheIdentityGateFewerReobservationsLandElsewhereAndTheRunReplaysTheSame) {
+  ASSERT_EQ(explore("plain").exit_code, 0);
+  std::ofstream(dir_ / "gated.yaml") << config_text((dir_ / "world.yaml").string(), 512, 0.0, true);
+  const test::CommandResult live =
+      test::run_stereoscout("explore --config " + (dir_ / "gated.yaml").string() + " --out " + (dir_ / "live").string());
+  ASSERT_EQ(live.exit_code, 0) << live.output;
+  const std::string plain = report("plain");
+  const std::string gated = report("live");
+  EXPECT_EQ(report_number(plain, "identity_gate"), -1.0) << plain;  // null when off
+  EXPECT_GT(report_number(gated, "split"), 0.0) << gated;
+  EXPECT_EQ(report_number(gated, "dropped_pool_full"), 0.0) << gated;
+  EXPECT_GT(report_number(gated, "reobservation_consistency"), report_number(plain, "reobservation_consistency"))
+      << plain << gated;
+  EXPECT_EQ(report_number(gated, "heap_allocations_in_loop"), 0.0) << gated;
+  const test::CommandResult replayed = replay(dir_ / "live" / "sensors.log", "replay");
+  ASSERT_EQ(replayed.exit_code, 0) << replayed.output;
+  std::map<std::string, std::string> expected = output_digests(gated);
   expected.erase("sensors.log");
   EXPECT_EQ(output_digests(report("replay")), expected);
 }

@@ -43,31 +43,4 @@ double relative_error_per_metre(const std::vector<core::Pose2>& estimated, const
   return segments == 0 ? 0.0 : sum / static_cast<double>(segments);
 }
 
-void ReobservationCheck::observe(const Eigen::Isometry3d& world_from_camera,
-                                 const core::LandmarkObservation* observations, std::size_t count) {
-  const Eigen::Matrix3d rotation = world_from_camera.linear();
-  for (std::size_t k = 0; k < count; ++k) {
-    const core::LandmarkObservation& observation = observations[k];
-    const Eigen::Vector3d point_world = world_from_camera * observation.point_camera;
-    const Eigen::Matrix3d covariance_world = core::rotate_covariance(rotation, observation.covariance);
-    const auto found = stored_.find(observation.landmark_id);
-    if (found == stored_.end()) {
-      stored_.emplace(observation.landmark_id, Stored{point_world, covariance_world});
-      continue;
-    }
-    Stored& stored = found->second;
-    // Comparing in the world frame equals moving the stored estimate into the current camera
-    // (a rigid motion leaves the Mahalanobis distance unchanged).
-    const Eigen::Vector3d delta = point_world - stored.mean_world;
-    const Eigen::Matrix3d innovation = stored.covariance_world + covariance_world;
-    ++reobservations_;
-    if (core::mahalanobis_squared(delta, innovation) > gate_chi2_) continue;
-    ++consistent_;
-    // Kalman fusion of the consistent sighting (the filter's EKF update with H = I).
-    const Eigen::Matrix3d gain = stored.covariance_world * innovation.inverse();
-    stored.mean_world += gain * delta;
-    stored.covariance_world = core::symmetrize((Eigen::Matrix3d::Identity() - gain) * stored.covariance_world);
-  }
-}
-
 }  // namespace stereoscout::cli::kitti

@@ -16,6 +16,7 @@
 #include "stereoscout/slam/particle_filter.hpp"
 #include "stereoscout/slam/slam_export.hpp"
 #include "stereoscout/vision/front_end.hpp"
+#include "stereoscout/vision/identity_check.hpp"
 
 namespace stereoscout::cli::kitti {
 namespace {
@@ -97,7 +98,7 @@ RunResult run_kitti_slam(const host_dataset::KittiSequence& sequence, const RunO
   core::FixedVector<core::LandmarkObservation> observations(front_end->max_observations());
   core::StereoFrame frame;
   frame.allocate(sequence.calibration.width_px, sequence.calibration.height_px);
-  ReobservationCheck check(options.filter.association_gate_chi2);
+  vision::IdentityCheck check(static_cast<std::size_t>(options.vision.index_capacity), options.filter.association_gate_chi2);
   std::vector<core::Pose2> odometry_poses;
   std::map<std::int64_t, std::size_t> frame_of_time;
   std::ostringstream odometry_tum;

@@ -207,6 +207,39 @@ void write_final_map(report::JsonWriter& json, const occupancy::TrajectoryScanCo
       .end_object();
 }
 
+// The front end's identities against the truth: null where the run has none (the robot).
+void write_identity_check(report::JsonWriter& json, const vision::IdentityCheck* check) {
+  if (check == nullptr) {
+    json.null("reobservation_consistency").null("identity_check");
+    return;
+  }
+  json.number("reobservation_consistency", check->consistency())
+      .begin_object("identity_check")
+      .unsigned_integer("first_sightings", check->first_sightings())
+      .unsigned_integer("reobservations", check->reobservations())
+      .unsigned_integer("consistent", check->consistent())
+      .unsigned_integer("past_capacity", check->past_capacity())
+      .end_object();
+}
+
+// vision.identity_gate's counts: null when it is off.
+void write_identity_gate(report::JsonWriter& json, const vision::IdentityGate* gate) {
+  if (gate == nullptr) {
+    json.null("identity_gate");
+    return;
+  }
+  const vision::IdentityGateStats& s = gate->stats();
+  json.begin_object("identity_gate")
+      .unsigned_integer("observations", s.observations)
+      .unsigned_integer("joined", s.joined)
+      .unsigned_integer("instances_created", s.instances_created)
+      .unsigned_integer("split", s.split)
+      .unsigned_integer("dropped_identity_full", s.dropped_identity_full)
+      .unsigned_integer("dropped_pool_full", s.dropped_pool_full)
+      .unsigned_integer("dropped_unknown_identity", s.dropped_unknown_identity)
+      .end_object();
+}
+
 void write_counters(report::JsonWriter& json, const stack::Stack& stack) {
   const stack::StackCounters& c = stack.counters();
   json.begin_object("stack")
@@ -339,8 +372,10 @@ std::string report_json(const stack::Stack& stack, const core::SystemConfig& con
   }
   json.unsigned_integer("updates", stack.counters().updates)
       .unsigned_integer("landmarks", score.landmarks)
-      .unsigned_integer("landmark_identities", stack.landmark_count())
-      .number("grids_held_mean", grid.mean_grids_held())
+      .unsigned_integer("landmark_identities", stack.landmark_count());
+  write_identity_check(json, stack.identity_check());
+  write_identity_gate(json, stack.identity_gate());
+  json.number("grids_held_mean", grid.mean_grids_held())
       .unsigned_integer("grids_held_max", grid.grids_held_max)
       .unsigned_integer("resamplings", stack.filter().counters().resamplings)
       .number("sim_time_s", stack.time_s())

@@ -100,12 +100,20 @@ Stack::Stack(const core::SystemConfig& config, const StackOptions& options, cons
       odometry_path_(records_for(options.max_time_s, config.robot.odometry_rate_hz)),
       staged_(kStagedRecords),
       thresholds_(occupancy::CellThresholds::from_config(config.grid)) {
-  const core::CameraMount mount = slam::camera_mount_from_config(config.camera);
+  mount_ = slam::camera_mount_from_config(config.camera);
   vision_ = std::make_unique<vision::VisionFrontEnd>(config.vision, config.robot,
-                                                     vision::calibration_from_config(config.camera), mount);
+                                                     vision::calibration_from_config(config.camera), mount_);
+  std::size_t largest_id = static_cast<std::size_t>(config.vision.index_capacity);
+  if (config.vision.identity_gate) {
+    identity_gate_ = std::make_unique<vision::IdentityGate>(vision::identity_gate_params_from_config(config.vision, config.filter));
+    largest_id = static_cast<std::size_t>(config.vision.identity_gate_instances);
+  }
+  if (board.ground_truth != nullptr) {
+    identity_check_ = std::make_unique<vision::IdentityCheck>(largest_id, config.filter.association_gate_chi2);
+  }
   vision_->allocate_scan(scan_);
   vision_->allocate_scan(seen_scan_);
-  filter_ = std::make_unique<slam::ParticleFilter>(filter_config_for(config.filter, options.localization), mount,
+  filter_ = std::make_unique<slam::ParticleFilter>(filter_config_for(config.filter, options.localization), mount_,
                                                    static_cast<std::uint64_t>(config.run.seed));
   capture_frame_.allocate(config.camera.width_px, config.camera.height_px);
   kept_frame_.allocate(config.camera.width_px, config.camera.height_px);
@@ -361,6 +369,15 @@ core::Status Stack::observation_update() {
     const core::Status seen = vision_->observe_landmarks(kept_frame_, observations_);
     counters_.heap_allocations_in_sift += sift_scope.allocations();
     if (!seen.ok()) ++counters_.vision_failures;
+    if (identity_gate_) {
+      identity_gate_->apply(odometry_at_frame,
+                            odometry_at_frame.to_isometry3() * core::robot_from_camera(mount_, kept_frame_.pan_rad),
+                            observations_);
+    }
+    if (identity_check_ && frame_has_truth_) {
+      identity_check_->observe(frame_truth_.to_isometry3() * core::robot_from_camera(mount_, kept_frame_.pan_rad),
+                               observations_.data(), observations_.size());
+    }
   }
   if (!vision_->scan(kept_frame_, scan_).ok()) ++counters_.vision_failures;
   const slam::UpdateResult result =

@@ -12,12 +12,12 @@
 // the camera moved more than robot.update_min_translation_m / update_min_rotation_deg since
 // the last kept pair (body or pan unit) and no kept pair is waiting; the observation update
 // waits for the first odometry reading at or after the pair's time, interpolates the
-// odometry pose to that time, runs the vision front end (landmarks and the 2.5D scan) and the
-// particle filter, and stores the scan for the just-in-time grid; the grid roll-up brings the
-// estimate's grid forward (the particle the stack follows: the ML particle, or with
-// filter.estimate_lineage_margin the one that keeps the lineage) and classifies it for the
-// explorer; the replan and drive tasks step the explorer with the estimate's pose
-// dead-reckoned forward by the odometry since the update.
+// odometry pose to that time, runs the vision front end (landmarks, their ids split by place
+// with vision.identity_gate, and the 2.5D scan) and the particle filter, and stores the scan
+// for the just-in-time grid; the grid roll-up brings the estimate's grid forward (the
+// particle the stack follows: the ML particle, or with filter.estimate_lineage_margin the one
+// that keeps the lineage) and classifies it for the explorer; the replan and drive tasks step
+// the explorer with the estimate's pose dead-reckoned forward by the odometry since the update.
 //
 // Everything the stack consumes goes to the sensor log in the order it was read (one
 // ordered staging queue drained by the logging task), so that a replay sees each record at
@@ -46,6 +46,8 @@
 #include "stereoscout/slam/particle_filter.hpp"
 #include "stereoscout/stack/odometry_history.hpp"
 #include "stereoscout/vision/front_end.hpp"
+#include "stereoscout/vision/identity_check.hpp"
+#include "stereoscout/vision/identity_gate.hpp"
 
 namespace stereoscout::stack {
 
@@ -149,6 +151,11 @@ class Stack {
   const explore::Explorer& explorer() const { return *explorer_; }
   const explore::GridView& grid_view() const { return view_; }
   const vision::VisionFrontEnd& vision() const { return *vision_; }
+  // The front end's identities checked against the true camera poses; null without a
+  // ground-truth source (the robot).
+  const vision::IdentityCheck* identity_check() const { return identity_check_.get(); }
+  // Null unless vision.identity_gate is on.
+  const vision::IdentityGate* identity_gate() const { return identity_gate_.get(); }
   const scheduler::Scheduler& scheduler() const { return *scheduler_; }
   const core::FixedVector<UpdateRecord>& update_records() const { return update_records_; }
   const core::FixedVector<core::Pose2>& odometry_path() const { return odometry_path_; }
@@ -199,6 +206,9 @@ class Stack {
 
   // Perception and estimation.
   std::unique_ptr<vision::VisionFrontEnd> vision_;
+  std::unique_ptr<vision::IdentityGate> identity_gate_;
+  std::unique_ptr<vision::IdentityCheck> identity_check_;
+  core::CameraMount mount_;
   std::unique_ptr<slam::ParticleFilter> filter_;
   std::unique_ptr<occupancy::JustInTimeGrid> grid_;
   std::unique_ptr<occupancy::ScanArchive> archive_;  // the final map's scans that left grid_'s ring
