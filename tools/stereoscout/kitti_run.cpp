@@ -17,6 +17,7 @@
 #include "stereoscout/slam/slam_export.hpp"
 #include "stereoscout/vision/front_end.hpp"
 #include "stereoscout/vision/identity_check.hpp"
+#include "stereoscout/vision/identity_gate.hpp"
 
 namespace stereoscout::cli::kitti {
 namespace {
@@ -98,7 +99,11 @@ RunResult run_kitti_slam(const host_dataset::KittiSequence& sequence, const RunO
   core::FixedVector<core::LandmarkObservation> observations(front_end->max_observations());
   core::StereoFrame frame;
   frame.allocate(sequence.calibration.width_px, sequence.calibration.height_px);
-  vision::IdentityCheck check(static_cast<std::size_t>(options.vision.index_capacity), options.filter.association_gate_chi2);
+  std::unique_ptr<vision::IdentityGate> gate;
+  if (options.vision.identity_gate) {
+    gate = std::make_unique<vision::IdentityGate>(vision::identity_gate_params_from_config(options.vision, options.filter));
+  }
+  vision::IdentityCheck check(vision::landmark_id_capacity(options.vision), options.filter.association_gate_chi2);
   std::vector<core::Pose2> odometry_poses;
   std::map<std::int64_t, std::size_t> frame_of_time;
   std::ostringstream odometry_tum;
@@ -125,6 +130,7 @@ RunResult run_kitti_slam(const host_dataset::KittiSequence& sequence, const RunO
       result.times.index_lookup_s += static_cast<double>(stats.identify_ns) * 1e-9;
       result.stereo_matches += stats.stereo_matches;
       result.frames_without_features += stats.stereo_matches == 0 ? 1U : 0U;
+      if (gate) gate->apply(reading.pose, reading.pose.to_isometry3() * core::robot_from_camera(mount, 0.0), observations);
       check.observe(host_dataset::right_camera_from_left(sequence.world_from_cam0[index], sequence.calibration.baseline_m),
                     observations.data(), observations.size());
     }

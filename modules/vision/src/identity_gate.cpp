@@ -17,6 +17,10 @@ IdentityGateParams identity_gate_params_from_config(const core::VisionConfig& vi
   return params;
 }
 
+std::size_t landmark_id_capacity(const core::VisionConfig& vision) {
+  return static_cast<std::size_t>(vision.identity_gate ? vision.identity_gate_instances : vision.index_capacity);
+}
+
 IdentityGate::IdentityGate(const IdentityGateParams& params)
     : params_(params), first_instance_(params.identities, kNone), instances_(params.instances) {}
 

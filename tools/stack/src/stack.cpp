@@ -103,13 +103,12 @@ Stack::Stack(const core::SystemConfig& config, const StackOptions& options, cons
   mount_ = slam::camera_mount_from_config(config.camera);
   vision_ = std::make_unique<vision::VisionFrontEnd>(config.vision, config.robot,
                                                      vision::calibration_from_config(config.camera), mount_);
-  std::size_t largest_id = static_cast<std::size_t>(config.vision.index_capacity);
   if (config.vision.identity_gate) {
     identity_gate_ = std::make_unique<vision::IdentityGate>(vision::identity_gate_params_from_config(config.vision, config.filter));
-    largest_id = static_cast<std::size_t>(config.vision.identity_gate_instances);
   }
   if (board.ground_truth != nullptr) {
-    identity_check_ = std::make_unique<vision::IdentityCheck>(largest_id, config.filter.association_gate_chi2);
+    identity_check_ = std::make_unique<vision::IdentityCheck>(vision::landmark_id_capacity(config.vision),
+                                                              config.filter.association_gate_chi2);
   }
   vision_->allocate_scan(scan_);
   vision_->allocate_scan(seen_scan_);

@@ -47,6 +47,10 @@ struct IdentityGateParams {
 // its proposal's linear terms.
 IdentityGateParams identity_gate_params_from_config(const core::VisionConfig& vision, const core::FilterConfig& filter);
 
+// The largest landmark id the filter can be handed: the index's capacity, or with the gate on
+// the gate's instances.
+std::size_t landmark_id_capacity(const core::VisionConfig& vision);
+
 struct IdentityGateStats {
   std::uint64_t observations = 0;       // keys handed in
   std::uint64_t joined = 0;             // joined an existing instance
