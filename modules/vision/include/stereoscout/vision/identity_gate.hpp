@@ -3,9 +3,9 @@
 //
 // The index names a landmark by its look alone, and a look can repeat: a floor's tiles, one
 // texture tiled over several walls. One entry then takes the keys of every place that looks
-// like it (the simulated office: 45% of re-observations landed elsewhere than the first
-// sighting, 92% of those of identities seen in 30 frames or more; docs/results.md), and the
-// filter weighs each such key as a re-observation of one landmark.
+// like it (the simulated office's first 300 s: 45% of re-observations lay elsewhere than
+// their landmark, most more than a metre off; docs/results.md), and the filter weighs each
+// such key as a re-observation of one landmark.
 //
 // The gate gives each index identity up to `instances_per_identity` *instances*, each a
 // landmark of its own for the filter (ids 1, 2, ... in order of creation, never reused), with
@@ -15,7 +15,8 @@
 // odometry error model's linear terms); a key near none of them starts a new instance. Over a
 // short drive the odometry is exact to millimetres, so two places with one look a metre apart
 // stay apart; over a long loop the drift widens the gate and a return to a place is still
-// re-identified. An identity with all its instances taken, or the instance pool full: the
+// re-identified (and places of one look seen long ago merge again: off by default for that,
+// docs/results.md). An identity with all its instances taken, or the instance pool full: the
 // observation is dropped (counted). Everything is sized at construction.
 #include <cstddef>
 #include <cstdint>
