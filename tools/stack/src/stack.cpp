@@ -368,14 +368,13 @@ core::Status Stack::observation_update() {
     const core::Status seen = vision_->observe_landmarks(kept_frame_, observations_);
     counters_.heap_allocations_in_sift += sift_scope.allocations();
     if (!seen.ok()) ++counters_.vision_failures;
+    const Eigen::Isometry3d robot_from_camera = core::robot_from_camera(mount_, kept_frame_.pan_rad);
     if (identity_gate_) {
-      identity_gate_->apply(odometry_at_frame,
-                            odometry_at_frame.to_isometry3() * core::robot_from_camera(mount_, kept_frame_.pan_rad),
-                            observations_);
+      identity_gate_->apply(odometry_at_frame, odometry_at_frame.to_isometry3() * robot_from_camera, observations_);
     }
     if (identity_check_ && frame_has_truth_) {
-      identity_check_->observe(frame_truth_.to_isometry3() * core::robot_from_camera(mount_, kept_frame_.pan_rad),
-                               observations_.data(), observations_.size());
+      identity_check_->observe(frame_truth_.to_isometry3() * robot_from_camera, observations_.data(),
+                               observations_.size());
     }
   }
   if (!vision_->scan(kept_frame_, scan_).ok()) ++counters_.vision_failures;
