@@ -176,6 +176,26 @@ TEST(PathFollower, PassesADoorTheGridHoldsWiderAlongItsAxis) {
   EXPECT_GT(on_axis, 0.09);
 }
 
+// The same wider grid without the door's axis: a centring reach that finds the grid's jamb
+// cells (0.6 m from the door's middle there) on both sides of the waypoints in the door, and
+// the short lookahead within 0.6 m of an obstacle, keep the disc nearly its 0.10 m too, while
+// the follower keeps to the latest plan.
+TEST(PathFollower, PassesADoorTheGridHoldsWiderCentredBetweenItsJambCells) {
+  ExploreParams params = test_params(60, 80);
+  params.explore.gap_centring_reach_m = 0.55;
+  params.explore.narrow_clearance_m = 0.0;
+  EXPECT_LT(least_clearance_m(params, true), 0.05);
+  params.explore.gap_centring_reach_m = 0.7;
+  EXPECT_LT(least_clearance_m(params, true), 0.075);  // centred, but the long lookahead cuts the turn
+  params.explore.narrow_clearance_m = 0.6;
+  const double wider = least_clearance_m(params, true);
+  const double exact = least_clearance_m(params);
+  std::printf("least jamb clearance, centring reach 0.7 m, narrow within 0.6 m: %.3f m in the wider grid, %.3f m in the exact grid\n",
+              wider, exact);
+  EXPECT_GT(wider, 0.09);
+  EXPECT_GT(exact, 0.09);
+}
+
 // The door is found where the plan's narrow stretch is narrowest, its middle between the grid's
 // jamb cells in either grid, its axis the way the plan passes. A door ahead that a new plan
 // no longer passes is dropped; one the robot is passing is kept until the disc has cleared it.
