@@ -299,6 +299,13 @@ void write_counters(report::JsonWriter& json, const stack::Stack& stack) {
       .unsigned_integer("plans_kept_for_walkers", e.plans_kept_for_walkers)
       .unsigned_integer("walker_waits_ended", e.walker_waits_ended)
       .unsigned_integer("looks", e.looks)
+      .unsigned_integer("door_scans", stack.explorer().door_sighting().counters().scans_at_doors)
+      .unsigned_integer("door_sightings", stack.explorer().door_sighting().counters().sightings)
+      .unsigned_integer("doors_sighted", stack.explorer().door_sighting().counters().doors_sighted)
+      .unsigned_integer("door_no_gap", stack.explorer().door_sighting().counters().no_gap)
+      .unsigned_integer("door_jamb_at_image_edge", stack.explorer().door_sighting().counters().jamb_at_image_edge)
+      .unsigned_integer("door_width_disagrees", stack.explorer().door_sighting().counters().width_disagrees)
+      .unsigned_integer("door_offset_too_large", stack.explorer().door_sighting().counters().offset_too_large)
       .unsigned_integer("events_recorded", stack.explorer().journal().recorded())
       .unsigned_integer("events_dropped", stack.explorer().journal().dropped())
       .end_object();

@@ -30,7 +30,12 @@ bool DoorPassage::axis_target(const Eigen::Vector2d& robot, double lookahead_m, 
 
 bool DoorAxis::next_door(const Plan& plan, std::size_t progress, const NavigationMap& map,
                          const Eigen::Vector2d& robot, DoorPassage& door) const {
-  const double search_m = params_.explore.door_axis_before_m + kSearchBeyond_m;
+  return find_door(plan, progress, map, robot, params_.explore.door_axis_before_m + kSearchBeyond_m, true,
+                   params_.safe_distance_m(map.grid().resolution_m), door);
+}
+
+bool find_door(const Plan& plan, std::size_t progress, const NavigationMap& map, const Eigen::Vector2d& robot,
+               double search_m, bool narrow_only, double clear_after_m, DoorPassage& door) {
   const std::size_t count = plan.waypoints.size();
   double travelled = 0.0;
   Eigen::Vector2d previous = robot;
@@ -39,18 +44,25 @@ bool DoorAxis::next_door(const Plan& plan, std::size_t progress, const Navigatio
   for (std::size_t k = progress; k + 1 < count; ++k) {
     travelled += (plan.waypoints[k] - previous).norm();
     previous = plan.waypoints[k];
-    if (!plan.narrow[k]) {
-      if (in_stretch || travelled > search_m) break;  // past the next narrow stretch, or too far
+    const bool candidate = !narrow_only || plan.narrow[k];
+    Eigen::Vector2d left;
+    Eigen::Vector2d right;
+    bool aside = false;
+    if (candidate && k > 0) {
+      const Eigen::Vector2d way = plan.waypoints[k + 1] - plan.waypoints[k - 1];
+      if (way.squaredNorm() > 0.0) {
+        const Eigen::Vector2d across = Eigen::Vector2d(-way.y(), way.x()).normalized();
+        aside = map.nearest_obstacles_aside(plan.waypoints[k], across, kSideReach_m, left, right);
+      }
+    }
+    // A narrow stretch is one of narrow waypoints; without narrow_only, one of waypoints with
+    // obstacle cells on both sides.
+    if (narrow_only ? !candidate : !aside) {
+      if (in_stretch || travelled > search_m) break;  // past the next stretch, or too far
       continue;
     }
     in_stretch = true;
-    if (k == 0) continue;
-    const Eigen::Vector2d way = plan.waypoints[k + 1] - plan.waypoints[k - 1];
-    if (way.squaredNorm() == 0.0) continue;
-    Eigen::Vector2d left;
-    Eigen::Vector2d right;
-    const Eigen::Vector2d across = Eigen::Vector2d(-way.y(), way.x()).normalized();
-    if (!map.nearest_obstacles_aside(plan.waypoints[k], across, kSideReach_m, left, right)) continue;
+    if (!aside) continue;
     const double gap = (left - right).norm();
     if (gap >= narrowest) continue;
     narrowest = gap;
@@ -60,7 +72,8 @@ bool DoorAxis::next_door(const Plan& plan, std::size_t progress, const Navigatio
     door.known = true;
     door.middle = 0.5 * (left + right);
     door.along = Eigen::Vector2d(left_of_way.y(), -left_of_way.x());
-    door.clear_after_m = params_.safe_distance_m(map.grid().resolution_m);
+    door.width_m = gap;
+    door.clear_after_m = clear_after_m;
   }
   return std::isfinite(narrowest);
 }

@@ -88,6 +88,7 @@ Explorer::Explorer(const ExploreParams& params)
       planner_(params),
       follower_(params),
       door_axis_(params),
+      sighting_(params),
       plan_(static_cast<std::size_t>(params.explore.max_plan_waypoints)) {}
 
 Eigen::Vector2d Explorer::stall_position(const ExploreInput& input) const {
@@ -106,7 +107,26 @@ void Explorer::note(ExploreEventKind kind, const ExploreInput& input) {
   journal_.record(event);
 }
 
-ExploreOutput Explorer::step(const ExploreInput& input) {
+const ExploreInput& Explorer::navigation_input(const ExploreInput& input) {
+  if (!sighting_.enabled()) return input;
+  navigation_input_ = input;
+  navigation_input_.pose = sighting_.navigation_pose(input.pose, input.odometry);
+  if (sighting_.wants(input.seen)) {
+    DoorPassage door;
+    const bool driving = state_ == ExploreState::drive || state_ == ExploreState::returning;
+    if (driving && !plan_.empty()) {
+      find_door(plan_, follower_.progress(), map_, position_of(navigation_input_.pose),
+                params_.explore.door_sighting_range_m + params_.robot_radius_m, false,
+                params_.safe_distance_m(map_.grid().resolution_m), door);
+    }
+    sighting_.observe(input.seen, door);
+    navigation_input_.pose = sighting_.navigation_pose(input.pose, input.odometry);
+  }
+  return navigation_input_;
+}
+
+ExploreOutput Explorer::step(const ExploreInput& raw_input) {
+  const ExploreInput& input = navigation_input(raw_input);
   if (!started_) start(input);
   trail_.record(position_of(input.pose));
   recent_.observe(input.seen);

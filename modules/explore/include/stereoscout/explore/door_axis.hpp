@@ -32,6 +32,7 @@ struct DoorPassage {
   bool known = false;
   Eigen::Vector2d middle = Eigen::Vector2d::Zero();  // between the grid's two jamb cells
   Eigen::Vector2d along = Eigen::Vector2d::UnitX();  // unit, the way the plan passes
+  double width_m = 0.0;                              // between the grid's two jamb cells' centres
   double clear_after_m = 0.0;                        // past the middle, the disc has cleared the jambs
 
   // From `before_m` before the middle (and no farther aside) to clear_after_m past it: the
@@ -39,6 +40,12 @@ struct DoorPassage {
   // elsewhere.
   bool axis_target(const Eigen::Vector2d& robot, double lookahead_m, double before_m, Eigen::Vector2d& target) const;
 };
+
+// The door of the plan's next stretch of narrow waypoints (`narrow_only`, Plan::narrow) or of
+// waypoints with obstacle cells on both sides within reach, beginning within `search_m` along
+// the plan from `robot` (the follower at `progress`); false when there is none.
+bool find_door(const Plan& plan, std::size_t progress, const NavigationMap& map, const Eigen::Vector2d& robot,
+               double search_m, bool narrow_only, double clear_after_m, DoorPassage& door);
 
 class DoorAxis {
  public:

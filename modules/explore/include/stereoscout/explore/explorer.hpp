@@ -25,7 +25,8 @@
 // of the obstacles the latest scan saw at the camera's height (a person walking in, whom the
 // grid holds only some updates later).
 // With door_axis_before_m, it steers along the axis of the door the plan passes next
-// (door_axis.hpp).
+// (door_axis.hpp). With door_sighting_range_m, it navigates by a pose corrected across that
+// door by where the latest scans saw its gap (door_sighting.hpp).
 // If facing the plan's next waypoint would clear the way (pure pursuit cut a corner beside an
 // obstacle), it turns in place to face it instead. Otherwise, with pan_at_goal, it looks around
 // (a standing robot makes no observation update, so nothing would clear a person's trace)
@@ -44,6 +45,7 @@
 #include "stereoscout/core/messages.hpp"
 #include "stereoscout/explore/contact_memory.hpp"
 #include "stereoscout/explore/door_axis.hpp"
+#include "stereoscout/explore/door_sighting.hpp"
 #include "stereoscout/explore/explore_journal.hpp"
 #include "stereoscout/explore/goal_value.hpp"
 #include "stereoscout/explore/grid_view.hpp"
@@ -126,9 +128,13 @@ class Explorer {
   const GoalValue& goal_value() const { return goal_value_; }
   const ContactMemory& contacts() const { return contacts_; }
   const RecentObstacles& recent_obstacles() const { return recent_; }
+  const DoorSighting& door_sighting() const { return sighting_; }
   const ExploreJournal& journal() const { return journal_; }
 
  private:
+  // `input` with the pose the explorer navigates by (door_sighting.hpp): a copy in
+  // navigation_input_, or `input` itself.
+  const ExploreInput& navigation_input(const ExploreInput& input);
   void start(const ExploreInput& input);
   void rebuild(const ExploreInput& input);
   void rebuild_map(const ExploreInput& input);
@@ -201,6 +207,8 @@ class Explorer {
   PathPlanner planner_;
   PathFollower follower_;
   DoorAxis door_axis_;
+  DoorSighting sighting_;
+  ExploreInput navigation_input_;
   Plan plan_;
   Goal goal_;
   ExploreCounters counters_;

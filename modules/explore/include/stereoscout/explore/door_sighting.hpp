@@ -1,0 +1,118 @@
+#pragma once
+// Door sighting (explore.door_sighting_range_m): the robot's offset across a door it is about
+// to pass, measured in the latest scan, and the pose it navigates by corrected for it.
+//
+// A 0.7 m robot has 0.10 m to spare on either side in a 0.9 m door, and the filter's pose is
+// often 0.05-0.25 m off across the door from where the grid holds it (docs/results.md: six of
+// the office's eight contacts were door jambs). The scan sees the door itself: a run of
+// columns that see past the door's line (through it, into the room or corridor beyond),
+// bounded on either side by a jamb or the wall beside it, which the matcher does not measure
+// past. The run's end columns give the jambs' bearings from the camera; rendered in front of
+// the office's doors, they put the gap's middle within 0.01 m of the truth from 0.9-1.8 m
+// away, wherever both jambs stood inside the image (docs/results.md).
+//
+// The door is the one the plan passes next (DoorAxis::next_door, any waypoint with obstacle
+// cells on both sides within reach): its line runs through the grid's jamb cells. Each new
+// scan taken with the camera within door_sighting_range_m of the door's middle, and at least
+// kMinAhead_m before its line, is searched for the run of past columns around the middle's
+// bearing. The jambs' rays, met with the door's line, give the gap the scan saw; its middle's
+// offset across the door from the grid's middle is how far the pose of the scan was off across
+// it (a gap much wider or narrower than the grid's, a jamb at the image's edge, or an offset
+// beyond door_sighting_max_offset_m is no sighting, counted). From then on, until the robot
+// has cleared the door or drove kHoldTravelFactor times the range since, the explorer navigates
+// by the scan's pose moved by that offset and then by the odometry since: its plans, the
+// follower and the safety check place the robot against the grid's door where the camera saw
+// it. Each later sighting of the same door replaces the earlier.
+//
+// Fixed-size state; observe() and navigation_pose() allocate nothing.
+
+#include <cstdint>
+
+#include <Eigen/Core>
+
+#include "stereoscout/core/geometry.hpp"
+#include "stereoscout/core/messages.hpp"
+#include "stereoscout/explore/door_axis.hpp"
+#include "stereoscout/explore/grid_view.hpp"
+#include "stereoscout/explore/seen_obstacles.hpp"
+
+namespace stereoscout::explore {
+
+struct DoorSightingCounters {
+  std::uint64_t scans_at_doors = 0;     // scans taken with a door on the plan in range
+  std::uint64_t sightings = 0;          // of them: the door's gap measured and the pose corrected
+  std::uint64_t no_gap = 0;             // no run of past columns around the middle's bearing
+  std::uint64_t jamb_at_image_edge = 0;
+  std::uint64_t width_disagrees = 0;    // the gap's width far from the grid's
+  std::uint64_t offset_too_large = 0;
+  std::uint64_t doors_sighted = 0;      // sightings of a door no sighting was held for
+};
+
+// What one scan saw of a door: its jambs on the door's line, in the map frame of the scan's
+// pose.
+struct DoorGap {
+  Eigen::Vector2d left = Eigen::Vector2d::Zero();   // the jamb to the left of the way through
+  Eigen::Vector2d right = Eigen::Vector2d::Zero();
+};
+
+class DoorSighting {
+ public:
+  // A jamb's bearing is kept only this many columns or more inside the image: the matcher
+  // measures the image's edge columns badly (the other camera does not see them).
+  static constexpr int kEdgeColumns = 32;
+  // A column sees past the door when its point lies this far beyond the door's line.
+  static constexpr double kPastLine_m = 0.1;
+  // A run of such columns bridges this many that do not: the seam between two floors on the
+  // threshold, seen as a surface there (the office's carpet meets the corridor's tiles in each
+  // door), cut the gap in two. About 5 degrees; the wall beside a door fills hundreds.
+  static constexpr int kMaxSplitColumns = 40;
+  // The camera must be this far before the door's line: nearer, the jambs leave the image.
+  static constexpr double kMinAhead_m = 0.5;
+  // A gap whose width differs from the grid's (between its jamb cells' centres) by more than
+  // this is another opening, or the run was cut short by something in the door.
+  static constexpr double kWidthTolerance_m = 0.3;
+  // A held sighting is dropped once the odometry has driven this many times the range since.
+  static constexpr double kHoldTravelFactor = 2.0;
+
+  explicit DoorSighting(const ExploreParams& params);
+
+  bool enabled() const { return range_m_ > 0.0; }
+  // A scan observe() has not seen yet.
+  bool wants(const SeenObstacles& seen) const;
+  // A new scan (wants(seen); others are ignored) with `door`, the door the plan passes next
+  // (door.known false: none; its width_m the grid's gap). A door other than the held
+  // sighting's drops it.
+  void observe(const SeenObstacles& seen, const DoorPassage& door);
+  // The pose to navigate by now: `pose` (the estimate), or while a sighting is held the
+  // sighted pose moved by the odometry since (`odometry`: the odometry pose now). Drops a held
+  // sighting once the door is passed or left.
+  core::Pose2 navigation_pose(const core::Pose2& pose, const core::Pose2& odometry);
+
+  bool holding() const { return held_; }
+  // The last sighting's offset across the door (map frame, added to the scan's pose).
+  Eigen::Vector2d last_offset() const { return offset_; }
+  const DoorSightingCounters& counters() const { return counters_; }
+
+  // The door's gap in `scan` taken at `pose` (map frame); false, with the reason counted,
+  // when there is none to trust.
+  bool measure(const core::DepthScan& scan, const core::Pose2& pose, const DoorPassage& door, DoorGap& gap);
+
+ private:
+  void release();
+  static bool touches_image_edge(int first, int last, int columns);
+  // Whether `column` of `scan` (taken at `pose`) saw past the door's line; its point in `point`.
+  static bool sees_past(const core::DepthScan& scan, const core::Pose2& pose, const DoorPassage& door, int column,
+                        Eigen::Vector2d& point);
+
+  double range_m_ = 0.0;
+  double max_offset_m_ = 0.0;
+  double last_scan_time_s_ = -1.0;
+  bool held_ = false;
+  DoorPassage door_;             // the door the held sighting is of
+  core::Pose2 sighted_pose_;     // the scan's pose, corrected
+  core::Pose2 sighted_odometry_; // the odometry at the scan
+  Eigen::Vector2d offset_ = Eigen::Vector2d::Zero();
+  DoorSightingCounters counters_;
+};
+
+}  // namespace stereoscout::explore

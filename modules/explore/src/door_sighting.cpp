@@ -1,0 +1,144 @@
+#include "stereoscout/explore/door_sighting.hpp"
+
+#include <cmath>
+
+namespace stereoscout::explore {
+namespace {
+// A jamb's ray must meet the door's line at least this steeply (cosine to the axis): a ray
+// along the wall meets it anywhere.
+constexpr double kMinRayAlongAxis = 0.25;
+// Doors whose middles lie nearer than this to each other are the same door.
+constexpr double kSameDoor_m = 0.3;
+
+Eigen::Vector2d left_of(const Eigen::Vector2d& direction) { return {-direction.y(), direction.x()}; }
+
+bool same_door(const DoorPassage& a, const DoorPassage& b) {
+  return a.known && b.known && (a.middle - b.middle).norm() <= kSameDoor_m && a.along.dot(b.along) > 0.0;
+}
+
+// Where the ray from `origin` through `point` meets the door's line; false when it meets it
+// too obliquely or behind the origin.
+bool meet_door_line(const Eigen::Vector2d& origin, const Eigen::Vector2d& point, const DoorPassage& door,
+                    Eigen::Vector2d& met) {
+  const Eigen::Vector2d ray = (point - origin).normalized();
+  const double steepness = ray.dot(door.along);
+  if (steepness < kMinRayAlongAxis) return false;
+  const double distance = (door.middle - origin).dot(door.along) / steepness;
+  if (distance <= 0.0) return false;
+  met = origin + distance * ray;
+  return true;
+}
+
+}  // namespace
+
+DoorSighting::DoorSighting(const ExploreParams& params)
+    : range_m_(params.explore.door_sighting_range_m), max_offset_m_(params.explore.door_sighting_max_offset_m) {}
+
+bool DoorSighting::wants(const SeenObstacles& seen) const {
+  return enabled() && seen.scan != nullptr && seen.time_s > last_scan_time_s_;
+}
+
+void DoorSighting::observe(const SeenObstacles& seen, const DoorPassage& door) {
+  if (!wants(seen)) return;
+  last_scan_time_s_ = seen.time_s;
+  if (held_ && door.known && !same_door(door, door_)) release();  // the plan passes another door now
+  if (!door.known) return;
+  const Eigen::Vector2d camera = seen.pose.transform_point(seen.scan->origin_robot);
+  if ((camera - door.middle).norm() > range_m_ || (camera - door.middle).dot(door.along) > -kMinAhead_m) return;
+  ++counters_.scans_at_doors;
+  DoorGap gap;
+  if (!measure(*seen.scan, seen.pose, door, gap)) return;
+  const Eigen::Vector2d across = left_of(door.along);
+  offset_ = (door.middle - 0.5 * (gap.left + gap.right)).dot(across) * across;
+  if (!held_) ++counters_.doors_sighted;
+  ++counters_.sightings;
+  held_ = true;
+  door_ = door;
+  sighted_pose_ = core::Pose2{seen.pose.x + offset_.x(), seen.pose.y + offset_.y(), seen.pose.theta};
+  sighted_odometry_ = seen.odometry;
+}
+
+void DoorSighting::release() { held_ = false; }
+
+core::Pose2 DoorSighting::navigation_pose(const core::Pose2& pose, const core::Pose2& odometry) {
+  if (!held_) return pose;
+  const core::Pose2 moved = sighted_pose_.compose(sighted_odometry_.between(odometry));
+  const bool cleared = (moved.translation() - door_.middle).dot(door_.along) > door_.clear_after_m;
+  const bool driven_far = (odometry.translation() - sighted_odometry_.translation()).norm() > kHoldTravelFactor * range_m_;
+  if (cleared || driven_far) {
+    release();
+    return pose;
+  }
+  return moved;
+}
+
+bool DoorSighting::sees_past(const core::DepthScan& scan, const core::Pose2& pose, const DoorPassage& door, int column,
+                             Eigen::Vector2d& point) {
+  const core::DepthScanColumn& seen = scan.columns[static_cast<std::size_t>(column)];
+  if (seen.kind == core::DepthScanColumn::Kind::invalid) return false;
+  point = pose.transform_point({seen.x_robot_m, seen.y_robot_m});
+  return (point - door.middle).dot(door.along) > kPastLine_m;
+}
+
+bool DoorSighting::measure(const core::DepthScan& scan, const core::Pose2& pose, const DoorPassage& door,
+                           DoorGap& gap) {
+  const Eigen::Vector2d camera = pose.transform_point(scan.origin_robot);
+  const double middle_bearing = std::atan2(door.middle.y() - camera.y(), door.middle.x() - camera.x());
+  const auto side_of_middle = [&](const Eigen::Vector2d& point) {
+    return core::wrap_angle(std::atan2(point.y() - camera.y(), point.x() - camera.x()) - middle_bearing);
+  };
+  const int columns = static_cast<int>(scan.columns.size());
+  // Runs of columns that see past the door's line, in image order (left to right), each
+  // bridging up to kMaxSplitColumns columns that do not (a floor's seam on the threshold
+  // seen as a surface); the one whose bearings span the middle's.
+  Eigen::Vector2d point;
+  for (int column = 0; column < columns; ++column) {
+    if (!sees_past(scan, pose, door, column, point)) continue;
+    const int first = column;
+    const Eigen::Vector2d first_point = point;
+    int last = column;
+    Eigen::Vector2d last_point = point;
+    for (int next = column + 1; next < columns && next - last <= kMaxSplitColumns + 1; ++next) {
+      if (sees_past(scan, pose, door, next, point)) {
+        last = next;
+        last_point = point;
+      }
+    }
+    column = last;
+    const double first_side = side_of_middle(first_point);
+    const double last_side = side_of_middle(last_point);
+    if (first_side * last_side > 0.0) continue;  // both ends on one side of the middle: not this door's run
+    if (touches_image_edge(first, last, columns)) {
+      ++counters_.jamb_at_image_edge;
+      return false;
+    }
+    // Bearings grow to the left: the run's end with the larger one is the left jamb.
+    const bool first_is_left = first_side > last_side;
+    Eigen::Vector2d first_jamb;
+    Eigen::Vector2d last_jamb;
+    if (!meet_door_line(camera, first_point, door, first_jamb) || !meet_door_line(camera, last_point, door, last_jamb)) {
+      ++counters_.no_gap;
+      return false;
+    }
+    gap.left = first_is_left ? first_jamb : last_jamb;
+    gap.right = first_is_left ? last_jamb : first_jamb;
+    if (std::abs((gap.left - gap.right).norm() - door.width_m) > kWidthTolerance_m) {
+      ++counters_.width_disagrees;
+      return false;
+    }
+    const Eigen::Vector2d across = left_of(door.along);
+    if (std::abs((door.middle - 0.5 * (gap.left + gap.right)).dot(across)) > max_offset_m_) {
+      ++counters_.offset_too_large;
+      return false;
+    }
+    return true;
+  }
+  ++counters_.no_gap;
+  return false;
+}
+
+bool DoorSighting::touches_image_edge(int first, int last, int columns) {
+  return first < kEdgeColumns || last > columns - 1 - kEdgeColumns;
+}
+
+}  // namespace stereoscout::explore
