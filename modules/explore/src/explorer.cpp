@@ -122,6 +122,7 @@ const ExploreInput& Explorer::navigation_input(const ExploreInput& input) {
     sighting_.observe(input.seen, door);
     navigation_input_.pose = sighting_.navigation_pose(input.pose, input.odometry);
   }
+  seen_shift_ = position_of(navigation_input_.pose) - position_of(input.pose);
   return navigation_input_;
 }
 
@@ -800,7 +801,8 @@ bool Explorer::scan_blocks_disc(const SeenObstacles& seen, const Eigen::Vector2d
   const double deep = std::max(0.0, radius - kScanGuardDeep_m);
   int inside = 0;
   for (std::size_t i = 0; i < seen.count; ++i) {
-    if (move_touches(seen.points[i], centre, robot, radius, deep) && ++inside >= params_.explore.scan_guard_min_points) {
+    const Eigen::Vector2d point = seen.points[i] + seen_shift_;
+    if (move_touches(point, centre, robot, radius, deep) && ++inside >= params_.explore.scan_guard_min_points) {
       return true;
     }
   }

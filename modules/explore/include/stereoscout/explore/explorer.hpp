@@ -209,6 +209,9 @@ class Explorer {
   DoorAxis door_axis_;
   DoorSighting sighting_;
   ExploreInput navigation_input_;
+  // The latest scan's points were placed with the estimate's pose: moved by the sighting's
+  // correction now (zero without one), they lie where the navigation pose puts them.
+  Eigen::Vector2d seen_shift_ = Eigen::Vector2d::Zero();
   Plan plan_;
   Goal goal_;
   ExploreCounters counters_;
