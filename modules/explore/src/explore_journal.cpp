@@ -26,6 +26,7 @@ const char* to_string(ExploreEventKind kind) {
     case ExploreEventKind::time_limit: return "time_limit";
     case ExploreEventKind::return_failed: return "return_failed";
     case ExploreEventKind::returned: return "returned";
+    case ExploreEventKind::door_sighted: return "door_sighted";
   }
   return "?";
 }

@@ -16,6 +16,7 @@ ExploreParams ExploreParams::from_config(const core::ExploreConfig& explore, con
   params.max_turn_rate_rad_s = core::degrees_to_radians(robot.max_turn_rate_deg_s);
   params.has_pan_unit = camera.has_pan_unit;
   params.camera_forward_m = camera.mount_x_m;
+  params.camera_baseline_m = camera.baseline_m;
   params.camera_half_fov_rad = std::atan(0.5 * camera.width_px / camera.focal_px);
   // The lowest image row looks down by half the vertical field of view plus the tilt.
   const double lowest_ray_rad =

@@ -107,6 +107,19 @@ void Explorer::note(ExploreEventKind kind, const ExploreInput& input) {
   journal_.record(event);
 }
 
+// The door's middle in the grid where other events have the goal, and the correction across
+// the door where they have its value.
+void Explorer::note_sighting(const ExploreInput& input) {
+  ExploreEvent event;
+  event.time_s = input.time_s;
+  event.kind = ExploreEventKind::door_sighted;
+  event.pose = input.pose;
+  event.goal = sighting_.door().middle;
+  const Eigen::Vector2d across(-sighting_.door().along.y(), sighting_.door().along.x());
+  event.goal_value = sighting_.last_offset().dot(across);
+  journal_.record(event);
+}
+
 const ExploreInput& Explorer::navigation_input(const ExploreInput& input) {
   if (!sighting_.enabled()) return input;
   navigation_input_ = input;
@@ -119,8 +132,10 @@ const ExploreInput& Explorer::navigation_input(const ExploreInput& input) {
                 params_.explore.door_sighting_range_m + params_.robot_radius_m, false,
                 params_.safe_distance_m(map_.grid().resolution_m), door);
     }
+    const std::uint64_t sightings = sighting_.counters().sightings;
     sighting_.observe(input.seen, door);
     navigation_input_.pose = sighting_.navigation_pose(input.pose, input.odometry);
+    if (sighting_.counters().sightings > sightings) note_sighting(navigation_input_);
   }
   seen_shift_ = position_of(navigation_input_.pose) - position_of(input.pose);
   return navigation_input_;

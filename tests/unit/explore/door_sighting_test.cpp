@@ -18,6 +18,7 @@ namespace {
 constexpr int kColumns = 640;
 constexpr double kFocal_px = 400.0;
 constexpr double kCameraForward_m = 0.1;
+constexpr double kBaseline_m = 0.1;
 
 ExploreParams sighting_params() {
   ExploreParams params;
@@ -38,15 +39,22 @@ DoorPassage office_door(double grid_width_m = 0.9) {
 }
 
 // The scan a camera at `truth` takes of a wall along the door's line with a gap
-// `true_width_m` wide around `true_middle`, passed along `along`: columns through the gap see
-// the floor 1.5 m past the line, the others nothing.
+// `true_width_m` wide around `true_middle`, passed along `along`: columns of the right camera
+// through the gap see the floor 1.5 m past the line where the left camera, kBaseline_m to its
+// left, sees it too; the others nothing (the blank wall, and the background the left jamb hides
+// from the left camera).
 core::DepthScan scan_of_door(const core::Pose2& truth, const Eigen::Vector2d& true_middle, double true_width_m,
                              const Eigen::Vector2d& along = Eigen::Vector2d(0.0, 1.0)) {
   core::DepthScan scan;
   scan.origin_robot = {kCameraForward_m, 0.0};
   scan.columns.resize(kColumns);
   const Eigen::Vector2d camera = truth.transform_point(scan.origin_robot);
+  const Eigen::Vector2d left_camera = truth.transform_point(scan.origin_robot + Eigen::Vector2d(0.0, kBaseline_m));
   const Eigen::Vector2d across(-along.y(), along.x());
+  const auto through_gap = [&](const Eigen::Vector2d& from, const Eigen::Vector2d& to) {
+    const double t = (true_middle - from).dot(along) / (to - from).dot(along);
+    return std::abs((from + t * (to - from) - true_middle).dot(across)) < 0.5 * true_width_m;
+  };
   for (int u = 0; u < kColumns; ++u) {
     const double bearing = truth.theta + std::atan((0.5 * kColumns - u) / kFocal_px);
     const Eigen::Vector2d ray(std::cos(bearing), std::sin(bearing));
@@ -57,6 +65,7 @@ core::DepthScan scan_of_door(const core::Pose2& truth, const Eigen::Vector2d& tr
     const Eigen::Vector2d on_line = camera + to_line / towards * ray;
     if (std::abs((on_line - true_middle).dot(across)) >= 0.5 * true_width_m) continue;  // the blank wall
     const Eigen::Vector2d beyond = camera + (to_line + 1.5) / towards * ray;
+    if (!through_gap(left_camera, beyond)) continue;  // hidden from the left camera
     const Eigen::Vector2d in_robot = truth.inverse().transform_point(beyond);
     column.kind = core::DepthScanColumn::Kind::free;
     column.x_robot_m = static_cast<float>(in_robot.x());

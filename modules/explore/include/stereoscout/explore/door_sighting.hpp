@@ -7,9 +7,10 @@
 // the office's eight contacts were door jambs). The scan sees the door itself: a run of
 // columns that see past the door's line (through it, into the room or corridor beyond),
 // bounded on either side by a jamb or the wall beside it, which the matcher does not measure
-// past. The run's end columns give the jambs' bearings from the camera; rendered in front of
-// the office's doors, they put the gap's middle within 0.01 m of the truth from 0.9-1.8 m
-// away, wherever both jambs stood inside the image (docs/results.md).
+// past. The run's end columns give the jambs' bearings from the camera (the left end's from the
+// left camera, see measure()); rendered in front of the office's doors, they put the gap's
+// middle within 0.003-0.006 m of the truth on the mean from 1.0-1.6 m away, wherever both
+// jambs stood inside the image (tests/integration/door_sighting_test.cpp).
 //
 // The door is the one the plan passes next (DoorAxis::next_door, any waypoint with obstacle
 // cells on both sides within reach): its line runs through the grid's jamb cells. Each new
@@ -89,8 +90,10 @@ class DoorSighting {
   core::Pose2 navigation_pose(const core::Pose2& pose, const core::Pose2& odometry);
 
   bool holding() const { return held_; }
-  // The last sighting's offset across the door (map frame, added to the scan's pose).
+  // The last sighting's offset across the door (map frame, added to the scan's pose), and its
+  // door.
   Eigen::Vector2d last_offset() const { return offset_; }
+  const DoorPassage& door() const { return door_; }
   const DoorSightingCounters& counters() const { return counters_; }
 
   // The door's gap in `scan` taken at `pose` (map frame); false, with the reason counted,
@@ -106,6 +109,7 @@ class DoorSighting {
 
   double range_m_ = 0.0;
   double max_offset_m_ = 0.0;
+  double baseline_m_ = 0.0;
   double last_scan_time_s_ = -1.0;
   bool held_ = false;
   DoorPassage door_;             // the door the held sighting is of

@@ -41,6 +41,7 @@ enum class ExploreEventKind : std::uint8_t {
   time_limit,        // explore.time_limit_s reached
   return_failed,     // no way back to the start, or no progress on it
   returned,          // back at the start
+  door_sighted,      // a scan saw the door on the plan: the pose navigated by is corrected across it
 };
 const char* to_string(ExploreEventKind kind);
 

@@ -185,6 +185,7 @@ class Explorer {
   // Where the stall detector measures the travel from (explore.stall_from_odometry).
   Eigen::Vector2d stall_position(const ExploreInput& input) const;
   void note(ExploreEventKind kind, const ExploreInput& input);
+  void note_sighting(const ExploreInput& input);
 
   ExploreParams params_;
   NavigationMap map_;

@@ -123,6 +123,8 @@ struct ExploreParams {
   double camera_forward_m = 0.1;
   double camera_half_fov_rad = 0.675;
   double camera_near_m = 1.0;
+  // The left camera's distance to the left of the right one, whose columns the scan has.
+  double camera_baseline_m = 0.1;
   int max_width = 700;   // grid size the buffers are allocated for
   int max_height = 700;
 
