@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <vector>
 
 #include "rendered_scan.hpp"
 #include "stereoscout/core/geometry.hpp"
@@ -29,6 +31,25 @@ explore::ExploreParams sighting_params() {
   params.explore.door_sighting_range_m = 2.0;
   return params;
 }
+
+// The grid's wall on the door's line (y = the door's), its cells free within the door: a 12 m
+// square grid from the origin at 0.1 m.
+struct WallGrid {
+  std::vector<std::uint8_t> cells;
+  explore::GridView view;
+  explicit WallGrid(const OfficeDoor& door) : cells(120 * 120, static_cast<std::uint8_t>(explore::CellState::free)) {
+    view.width = 120;
+    view.height = 120;
+    view.resolution_m = 0.1;
+    view.origin_m = Eigen::Vector2d::Zero();
+    const int row = static_cast<int>(std::floor(door.middle.y() / view.resolution_m));
+    for (int x = 0; x < view.width; ++x) {
+      if (std::abs(view.center(x, row).x() - door.middle.x()) < 0.45) continue;
+      cells[static_cast<std::size_t>(row * view.width + x)] = static_cast<std::uint8_t>(explore::CellState::occupied);
+    }
+    view.cells = cells.data();
+  }
+};
 
 struct SightingScore {
   int views = 0;
@@ -55,6 +76,7 @@ SightingScore sight(const OfficeDoor& office_door, double grid_width_m) {
   door.clear_after_m = 0.5;
   const Eigen::Vector2d across(-door.along.y(), door.along.x());
   const double heading = std::atan2(door.along.y(), door.along.x());
+  const WallGrid wall(office_door);
   SightingScore score;
   std::uint32_t frame = 0;
   for (double before : {1.0, 1.3, 1.6}) {
@@ -75,7 +97,7 @@ SightingScore sight(const OfficeDoor& office_door, double grid_width_m) {
           seen.time_s = 1.0;
           seen.pose = believed;
           seen.odometry = core::Pose2{3.0, -1.0, 0.5};  // any frame
-          sighting.observe(seen, door);
+          sighting.observe(seen, door, wall.view);
           ++score.views;
           if (!sighting.holding()) continue;
           ++score.sighted;

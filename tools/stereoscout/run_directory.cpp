@@ -302,6 +302,7 @@ void write_counters(report::JsonWriter& json, const stack::Stack& stack) {
       .unsigned_integer("door_scans", stack.explorer().door_sighting().counters().scans_at_doors)
       .unsigned_integer("door_sightings", stack.explorer().door_sighting().counters().sightings)
       .unsigned_integer("doors_sighted", stack.explorer().door_sighting().counters().doors_sighted)
+      .unsigned_integer("door_not_in_a_wall", stack.explorer().door_sighting().counters().not_in_a_wall)
       .unsigned_integer("door_no_gap", stack.explorer().door_sighting().counters().no_gap)
       .unsigned_integer("door_jamb_at_image_edge", stack.explorer().door_sighting().counters().jamb_at_image_edge)
       .unsigned_integer("door_width_disagrees", stack.explorer().door_sighting().counters().width_disagrees)

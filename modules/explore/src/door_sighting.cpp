@@ -40,7 +40,7 @@ bool DoorSighting::wants(const SeenObstacles& seen) const {
   return enabled() && seen.scan != nullptr && seen.time_s > last_scan_time_s_;
 }
 
-void DoorSighting::observe(const SeenObstacles& seen, const DoorPassage& door) {
+void DoorSighting::observe(const SeenObstacles& seen, const DoorPassage& door, const GridView& grid) {
   if (!wants(seen)) return;
   last_scan_time_s_ = seen.time_s;
   if (held_ && door.known && !same_door(door, door_)) release();  // the plan passes another door now
@@ -48,6 +48,10 @@ void DoorSighting::observe(const SeenObstacles& seen, const DoorPassage& door) {
   const Eigen::Vector2d camera = seen.pose.transform_point(seen.scan->origin_robot);
   if ((camera - door.middle).norm() > range_m_ || (camera - door.middle).dot(door.along) > -kMinAhead_m) return;
   ++counters_.scans_at_doors;
+  if (!in_a_wall(door, grid)) {
+    ++counters_.not_in_a_wall;
+    return;
+  }
   DoorGap gap;
   if (!measure(*seen.scan, seen.pose, door, gap)) return;
   const Eigen::Vector2d across = left_of(door.along);
@@ -139,6 +143,20 @@ bool DoorSighting::measure(const core::DepthScan& scan, const core::Pose2& pose,
   }
   ++counters_.no_gap;
   return false;
+}
+
+bool DoorSighting::in_a_wall(const DoorPassage& door, const GridView& grid) {
+  const Eigen::Vector2d across = left_of(door.along);
+  for (double side : {-1.0, 1.0}) {
+    const Eigen::Vector2d jamb = door.middle + side * 0.5 * door.width_m * across;
+    int occupied = 0;
+    for (int k = 1; k <= kWallCells; ++k) {
+      const Eigen::Vector2i cell = grid.cell_of(jamb + side * k * grid.resolution_m * across);
+      occupied += grid.contains(cell.x(), cell.y()) && grid.at(cell.x(), cell.y()) == CellState::occupied ? 1 : 0;
+    }
+    if (occupied < kWallCellsOccupied) return false;
+  }
+  return true;
 }
 
 bool DoorSighting::touches_image_edge(int first, int last, int columns) {

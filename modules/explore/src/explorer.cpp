@@ -133,7 +133,7 @@ const ExploreInput& Explorer::navigation_input(const ExploreInput& input) {
                 params_.safe_distance_m(map_.grid().resolution_m), door);
     }
     const std::uint64_t sightings = sighting_.counters().sightings;
-    sighting_.observe(input.seen, door);
+    sighting_.observe(input.seen, door, planning_grid_);
     navigation_input_.pose = sighting_.navigation_pose(input.pose, input.odometry);
     if (sighting_.counters().sightings > sightings) note_sighting(navigation_input_);
   }

@@ -74,6 +74,15 @@ core::DepthScan scan_of_door(const core::Pose2& truth, const Eigen::Vector2d& tr
   return scan;
 }
 
+// The grid's wall along y = 6.2 (the cell row 62), the door's cells free from x 5.1 to 5.9.
+struct OfficeWall {
+  testing::TestGrid grid{100, 100, CellState::free};
+  OfficeWall() {
+    grid.fill(0, 62, 51, 63, CellState::occupied);
+    grid.fill(59, 62, 100, 63, CellState::occupied);
+  }
+};
+
 SeenObstacles seen_at(const core::DepthScan& scan, const core::Pose2& believed, const core::Pose2& odometry,
                       double time_s) {
   SeenObstacles seen;
@@ -88,13 +97,14 @@ SeenObstacles seen_at(const core::DepthScan& scan, const core::Pose2& believed, 
 // where it stands, carries that along the odometry while it drives in (whatever the estimate
 // does meanwhile), and lets go once the disc has cleared the jambs.
 TEST(DoorSighting, PutsTheRobotWhereTheScanSawTheDoorUntilItHasPassed) {
+  const OfficeWall wall;
   DoorSighting sighting(sighting_params());
   const DoorPassage door = office_door();
   const core::Pose2 truth{5.38, 5.0, core::kPi / 2.0};
   const core::Pose2 believed{5.53, 5.0, core::kPi / 2.0};
   const core::Pose2 odometry{-2.0, 1.0, 0.3};  // the odometry's own frame
   const core::DepthScan scan = scan_of_door(truth, door.middle, 0.9);
-  sighting.observe(seen_at(scan, believed, odometry, 1.0), door);
+  sighting.observe(seen_at(scan, believed, odometry, 1.0), door, wall.grid.view());
   ASSERT_TRUE(sighting.holding());
   EXPECT_EQ(sighting.counters().sightings, 1U);
   EXPECT_EQ(sighting.counters().doors_sighted, 1U);
@@ -120,12 +130,13 @@ TEST(DoorSighting, PutsTheRobotWhereTheScanSawTheDoorUntilItHasPassed) {
 // A gap far narrower than the grid's door, an offset past the limit, a jamb at the image's
 // edge, and a camera too near or too far: no sighting, each counted where it was measured.
 TEST(DoorSighting, TrustsNoGapThatDisagreesWithTheGridsDoor) {
+  const OfficeWall wall;
   const core::Pose2 truth{5.5, 5.0, core::kPi / 2.0};
   const core::Pose2 odometry;
   {
     DoorSighting sighting(sighting_params());
     const core::DepthScan scan = scan_of_door(truth, {5.5, 6.2}, 0.5);
-    sighting.observe(seen_at(scan, truth, odometry, 1.0), office_door(0.9));
+    sighting.observe(seen_at(scan, truth, odometry, 1.0), office_door(0.9), wall.grid.view());
     EXPECT_FALSE(sighting.holding());
     EXPECT_EQ(sighting.counters().width_disagrees, 1U);
   }
@@ -133,7 +144,7 @@ TEST(DoorSighting, TrustsNoGapThatDisagreesWithTheGridsDoor) {
     DoorSighting sighting(sighting_params());
     const core::Pose2 back{5.5, 4.8, core::kPi / 2.0};  // both jambs well inside the image
     const core::DepthScan scan = scan_of_door(back, {5.15, 6.2}, 0.9);  // 0.35 m west of the grid's
-    sighting.observe(seen_at(scan, back, odometry, 1.0), office_door());
+    sighting.observe(seen_at(scan, back, odometry, 1.0), office_door(), wall.grid.view());
     EXPECT_FALSE(sighting.holding());
     EXPECT_EQ(sighting.counters().offset_too_large, 1U);
   }
@@ -141,7 +152,7 @@ TEST(DoorSighting, TrustsNoGapThatDisagreesWithTheGridsDoor) {
     DoorSighting sighting(sighting_params());
     const core::Pose2 turned{5.5, 5.0, core::kPi / 2.0 - 0.5};  // the west jamb at the image's edge
     const core::DepthScan scan = scan_of_door(turned, {5.5, 6.2}, 0.9);
-    sighting.observe(seen_at(scan, turned, odometry, 1.0), office_door());
+    sighting.observe(seen_at(scan, turned, odometry, 1.0), office_door(), wall.grid.view());
     EXPECT_FALSE(sighting.holding());
     EXPECT_EQ(sighting.counters().jamb_at_image_edge, 1U);
   }
@@ -151,31 +162,49 @@ TEST(DoorSighting, TrustsNoGapThatDisagreesWithTheGridsDoor) {
     const core::Pose2 far{5.5, 3.5, core::kPi / 2.0};
     const core::DepthScan near_scan = scan_of_door(near, {5.5, 6.2}, 0.9);
     const core::DepthScan far_scan = scan_of_door(far, {5.5, 6.2}, 0.9);
-    sighting.observe(seen_at(near_scan, near, odometry, 1.0), office_door());
-    sighting.observe(seen_at(far_scan, far, odometry, 2.0), office_door());
+    sighting.observe(seen_at(near_scan, near, odometry, 1.0), office_door(), wall.grid.view());
+    sighting.observe(seen_at(far_scan, far, odometry, 2.0), office_door(), wall.grid.view());
     EXPECT_FALSE(sighting.holding());
     EXPECT_EQ(sighting.counters().scans_at_doors, 0U);
   }
 }
 
+// A gap the plan passes with no wall on its line beside it (a person's trace across a corridor
+// from its wall, seen along the corridor) is no door to sight.
+TEST(DoorSighting, LooksOnlyAtGapsInAWall) {
+  const OfficeWall wall;
+  testing::TestGrid open{100, 100, CellState::free};
+  open.fill(50, 62, 51, 63, CellState::occupied);  // the jamb cells alone
+  open.fill(59, 62, 60, 63, CellState::occupied);
+  const core::Pose2 truth{5.38, 5.0, core::kPi / 2.0};
+  const core::DepthScan scan = scan_of_door(truth, {5.5, 6.2}, 0.9);
+  DoorSighting sighting(sighting_params());
+  sighting.observe(seen_at(scan, truth, core::Pose2(), 1.0), office_door(), open.view());
+  EXPECT_FALSE(sighting.holding());
+  EXPECT_EQ(sighting.counters().not_in_a_wall, 1U);
+  sighting.observe(seen_at(scan, truth, core::Pose2(), 2.0), office_door(), wall.grid.view());
+  EXPECT_TRUE(sighting.holding());
+}
+
 // A sighting is of one door: when the plan passes another one next, it is dropped; a scan seen
 // before is not looked at again.
 TEST(DoorSighting, DropsTheSightingForAnotherDoorAndLooksAtEachScanOnce) {
+  const OfficeWall wall;
   DoorSighting sighting(sighting_params());
   const core::Pose2 truth{5.38, 5.0, core::kPi / 2.0};
   const core::Pose2 believed{5.53, 5.0, core::kPi / 2.0};
   const core::Pose2 odometry;
   const core::DepthScan scan = scan_of_door(truth, {5.5, 6.2}, 0.9);
   const SeenObstacles seen = seen_at(scan, believed, odometry, 1.0);
-  sighting.observe(seen, office_door());
+  sighting.observe(seen, office_door(), wall.grid.view());
   ASSERT_TRUE(sighting.holding());
   EXPECT_FALSE(sighting.wants(seen));
-  sighting.observe(seen, office_door());
+  sighting.observe(seen, office_door(), wall.grid.view());
   EXPECT_EQ(sighting.counters().scans_at_doors, 1U);
 
   DoorPassage other = office_door();
   other.middle = {13.0, 6.2};
-  sighting.observe(seen_at(scan, believed, odometry, 2.0), other);
+  sighting.observe(seen_at(scan, believed, odometry, 2.0), other, wall.grid.view());
   EXPECT_FALSE(sighting.holding());
   EXPECT_EQ(sighting.navigation_pose(believed, odometry).x, believed.x);
 }

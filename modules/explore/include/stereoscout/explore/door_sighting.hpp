@@ -41,6 +41,7 @@ namespace stereoscout::explore {
 
 struct DoorSightingCounters {
   std::uint64_t scans_at_doors = 0;     // scans taken with a door on the plan in range
+  std::uint64_t not_in_a_wall = 0;      // of them: the grid holds no wall on the door's line beside a jamb
   std::uint64_t sightings = 0;          // of them: the door's gap measured and the pose corrected
   std::uint64_t no_gap = 0;             // no run of past columns around the middle's bearing
   std::uint64_t jamb_at_image_edge = 0;
@@ -74,6 +75,11 @@ class DoorSighting {
   static constexpr double kWidthTolerance_m = 0.3;
   // A held sighting is dropped once the odometry has driven this many times the range since.
   static constexpr double kHoldTravelFactor = 2.0;
+  // A door is an opening in a wall: of the grid's cells on the door's line just beyond each
+  // jamb cell (kWallCells of them outwards), at least kWallCellsOccupied are occupied. A gap
+  // between a person's trace and a wall, seen along a corridor, is none.
+  static constexpr int kWallCells = 3;
+  static constexpr int kWallCellsOccupied = 2;
 
   explicit DoorSighting(const ExploreParams& params);
 
@@ -81,9 +87,9 @@ class DoorSighting {
   // A scan observe() has not seen yet.
   bool wants(const SeenObstacles& seen) const;
   // A new scan (wants(seen); others are ignored) with `door`, the door the plan passes next
-  // (door.known false: none; its width_m the grid's gap). A door other than the held
+  // (door.known false: none; its width_m the grid's gap) in `grid`. A door other than the held
   // sighting's drops it.
-  void observe(const SeenObstacles& seen, const DoorPassage& door);
+  void observe(const SeenObstacles& seen, const DoorPassage& door, const GridView& grid);
   // The pose to navigate by now: `pose` (the estimate), or while a sighting is held the
   // sighted pose moved by the odometry since (`odometry`: the odometry pose now). Drops a held
   // sighting once the door is passed or left.
@@ -103,6 +109,7 @@ class DoorSighting {
  private:
   void release();
   static bool touches_image_edge(int first, int last, int columns);
+  static bool in_a_wall(const DoorPassage& door, const GridView& grid);
   // Whether `column` of `scan` (taken at `pose`) saw past the door's line; its point in `point`.
   static bool sees_past(const core::DepthScan& scan, const core::Pose2& pose, const DoorPassage& door, int column,
                         Eigen::Vector2d& point);
