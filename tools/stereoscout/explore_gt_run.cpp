@@ -119,6 +119,7 @@ ExploreGtResult run_explore_gt(const core::SystemConfig& config, const host_sim:
       seen.scan = &scan;
       seen.odometry = pose;  // ground truth here stands for odometry too
       seen.pose = pose;
+      seen.pan_rad = simulator.pan_rad();
       occupancy::classify_cells(grid, thresholds, cells.data(), in_view.data());
       last_update_pose = pose;
       last_update_camera_heading = camera_heading;

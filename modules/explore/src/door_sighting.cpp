@@ -53,7 +53,7 @@ void DoorSighting::observe(const SeenObstacles& seen, const DoorPassage& door, c
     return;
   }
   DoorGap gap;
-  if (!measure(*seen.scan, seen.pose, door, gap)) return;
+  if (!measure(*seen.scan, seen.pose, seen.pan_rad, door, gap)) return;
   const Eigen::Vector2d across = left_of(door.along);
   offset_ = (door.middle - 0.5 * (gap.left + gap.right)).dot(across) * across;
   if (!held_) ++counters_.doors_sighted;
@@ -86,16 +86,16 @@ bool DoorSighting::sees_past(const core::DepthScan& scan, const core::Pose2& pos
   return (point - door.middle).dot(door.along) > kPastLine_m;
 }
 
-bool DoorSighting::measure(const core::DepthScan& scan, const core::Pose2& pose, const DoorPassage& door,
-                           DoorGap& gap) {
+bool DoorSighting::measure(const core::DepthScan& scan, const core::Pose2& pose, double pan_rad,
+                           const DoorPassage& door, DoorGap& gap) {
   const Eigen::Vector2d camera = pose.transform_point(scan.origin_robot);
   // The scan's columns are the right camera's. Just right of the left jamb's edge in its image
   // lies a band of the background that the left camera does not see past the jamb, so the
   // matcher measures nothing there (at 1.5 m, with the floor beyond at 3.6 m, 15 columns:
   // 0.05 m). The first column past it is the first background the left camera sees beside
-  // the jamb: the jamb lies on the left camera's ray to it. The pan unit stands at 0 while
-  // driving, so the left camera is to the robot's left.
-  const Eigen::Vector2d left_camera = pose.transform_point(scan.origin_robot + Eigen::Vector2d(0.0, baseline_m_));
+  // the jamb: the jamb lies on the left camera's ray to it, which is to the camera's left.
+  const Eigen::Vector2d camera_left(-std::sin(pan_rad), std::cos(pan_rad));
+  const Eigen::Vector2d left_camera = pose.transform_point(scan.origin_robot + baseline_m_ * camera_left);
   const double middle_bearing = std::atan2(door.middle.y() - camera.y(), door.middle.x() - camera.x());
   const auto side_of_middle = [&](const Eigen::Vector2d& point) {
     return core::wrap_angle(std::atan2(point.y() - camera.y(), point.x() - camera.x()) - middle_bearing);

@@ -44,19 +44,20 @@ DoorPassage office_door(double grid_width_m = 0.9) {
 // left, sees it too; the others nothing (the blank wall, and the background the left jamb hides
 // from the left camera).
 core::DepthScan scan_of_door(const core::Pose2& truth, const Eigen::Vector2d& true_middle, double true_width_m,
-                             const Eigen::Vector2d& along = Eigen::Vector2d(0.0, 1.0)) {
+                             const Eigen::Vector2d& along = Eigen::Vector2d(0.0, 1.0), double pan_rad = 0.0) {
   core::DepthScan scan;
   scan.origin_robot = {kCameraForward_m, 0.0};
   scan.columns.resize(kColumns);
   const Eigen::Vector2d camera = truth.transform_point(scan.origin_robot);
-  const Eigen::Vector2d left_camera = truth.transform_point(scan.origin_robot + Eigen::Vector2d(0.0, kBaseline_m));
+  const Eigen::Vector2d camera_left(-std::sin(pan_rad), std::cos(pan_rad));
+  const Eigen::Vector2d left_camera = truth.transform_point(scan.origin_robot + kBaseline_m * camera_left);
   const Eigen::Vector2d across(-along.y(), along.x());
   const auto through_gap = [&](const Eigen::Vector2d& from, const Eigen::Vector2d& to) {
     const double t = (true_middle - from).dot(along) / (to - from).dot(along);
     return std::abs((from + t * (to - from) - true_middle).dot(across)) < 0.5 * true_width_m;
   };
   for (int u = 0; u < kColumns; ++u) {
-    const double bearing = truth.theta + std::atan((0.5 * kColumns - u) / kFocal_px);
+    const double bearing = truth.theta + pan_rad + std::atan((0.5 * kColumns - u) / kFocal_px);
     const Eigen::Vector2d ray(std::cos(bearing), std::sin(bearing));
     core::DepthScanColumn& column = scan.columns[static_cast<std::size_t>(u)];
     const double towards = ray.dot(along);
@@ -125,6 +126,29 @@ TEST(DoorSighting, PutsTheRobotWhereTheScanSawTheDoorUntilItHasPassed) {
   EXPECT_FALSE(sighting.holding());
   EXPECT_EQ(after.x, jumped.x);
   EXPECT_EQ(after.y, jumped.y);
+}
+
+// A scan taken with the pan unit turned: the left camera stands off to the camera's left, not
+// the robot's, and the left jamb is on its ray from there.
+TEST(DoorSighting, TakesTheLeftCameraWhereThePanUnitHadIt) {
+  const OfficeWall wall;
+  const double pan_rad = 0.6;
+  const core::Pose2 truth{5.38, 4.9, core::kPi / 2.0 - pan_rad};  // the camera faces the door
+  const core::Pose2 believed{5.53, 4.9, truth.theta};
+  const core::DepthScan scan = scan_of_door(truth, {5.5, 6.2}, 0.9, {0.0, 1.0}, pan_rad);
+  const auto corrected_error_m = [&](double pan_given_rad) {
+    DoorSighting sighting(sighting_params());
+    SeenObstacles seen = seen_at(scan, believed, core::Pose2(), 1.0);
+    seen.pan_rad = pan_given_rad;
+    sighting.observe(seen, office_door(), wall.grid.view());
+    EXPECT_TRUE(sighting.holding());
+    return std::abs(sighting.navigation_pose(believed, core::Pose2()).x - truth.x);
+  };
+  const double with_pan = corrected_error_m(pan_rad);
+  const double without = corrected_error_m(0.0);
+  std::printf("corrected pose off across the door: %.4f m with the pan, %.4f m taking it as 0\n", with_pan, without);
+  EXPECT_LT(with_pan, 0.01);
+  EXPECT_GT(without, 2.0 * with_pan);
 }
 
 // A gap far narrower than the grid's door, an offset past the limit, a jamb at the image's

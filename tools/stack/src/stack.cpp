@@ -389,7 +389,7 @@ core::Status Stack::observation_update() {
   grid_->record_scan(index, scan_);
   pose_at_update_ = filter_->estimate_pose();
   odometry_at_update_ = odometry_at_frame;
-  keep_seen_obstacles(frame_ns);
+  keep_seen_obstacles(frame_ns, kept_frame_.pan_rad);
   update_records_.push_back(UpdateRecord{frame_ns, index, odometry_at_frame, frame_truth_, frame_has_truth_});
   rollup_due_ = true;
   ++counters_.updates;
@@ -398,7 +398,7 @@ core::Status Stack::observation_update() {
 
 // The scan's obstacles at the camera's height, placed with the pose the grid uses for this
 // scan, for the explorer's safety check (explore::SeenObstacles).
-void Stack::keep_seen_obstacles(std::int64_t frame_ns) {
+void Stack::keep_seen_obstacles(std::int64_t frame_ns, double pan_rad) {
   seen_.points = seen_obstacles_.data();
   seen_.count = explore::seen_obstacles_from_scan(scan_, pose_at_update_, seen_obstacles_.data(), seen_obstacles_.size());
   seen_.time_s = static_cast<double>(frame_ns - start_ns_) * 1e-9;
@@ -406,6 +406,7 @@ void Stack::keep_seen_obstacles(std::int64_t frame_ns) {
   seen_.scan = &seen_scan_;
   seen_.odometry = odometry_at_update_;
   seen_.pose = pose_at_update_;
+  seen_.pan_rad = pan_rad;
 }
 
 core::Status Stack::grid_rollup() {

@@ -12,8 +12,8 @@
 // middle within 0.003-0.006 m of the truth on the mean from 1.0-1.6 m away, wherever both
 // jambs stood inside the image (tests/integration/door_sighting_test.cpp).
 //
-// The door is the one the plan passes next (DoorAxis::next_door, any waypoint with obstacle
-// cells on both sides within reach): its line runs through the grid's jamb cells. Each new
+// The door is the one the plan passes next (find_door(), any waypoint with obstacle cells on
+// both sides within reach): its line runs through the grid's jamb cells. Each new
 // scan taken with the camera within door_sighting_range_m of the door's middle, and at least
 // kMinAhead_m before its line, is searched for the run of past columns around the middle's
 // bearing. The jambs' rays, met with the door's line, give the gap the scan saw; its middle's
@@ -106,11 +106,11 @@ class DoorSighting {
   const DoorPassage& door() const { return door_; }
   const DoorSightingCounters& counters() const { return counters_; }
 
-  // The door's gap in `scan` taken at `pose` (map frame); false, with the reason counted,
-  // when there is none to trust.
-  bool measure(const core::DepthScan& scan, const core::Pose2& pose, const DoorPassage& door, DoorGap& gap);
-
  private:
+  // The door's gap in `scan` taken at `pose` (map frame) with the pan unit at `pan_rad`; false,
+  // with the reason counted, when there is none to trust.
+  bool measure(const core::DepthScan& scan, const core::Pose2& pose, double pan_rad, const DoorPassage& door,
+               DoorGap& gap);
   void release();
   static bool touches_image_edge(int first, int last, int columns);
   static bool in_a_wall(const DoorPassage& door, const GridView& grid);

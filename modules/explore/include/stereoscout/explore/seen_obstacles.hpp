@@ -27,6 +27,7 @@ struct SeenObstacles {
   const core::DepthScan* scan = nullptr;
   core::Pose2 odometry;
   core::Pose2 pose;
+  double pan_rad = 0.0;  // the pan unit's angle at the capture (where the left camera was)
 };
 
 // Writes into `points` (room for `capacity`) the scan's obstacle columns that stand at the

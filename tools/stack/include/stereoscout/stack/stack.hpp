@@ -187,7 +187,7 @@ class Stack {
   core::Status capture();
   core::Status odometry();
   core::Status observation_update();
-  void keep_seen_obstacles(std::int64_t frame_ns);
+  void keep_seen_obstacles(std::int64_t frame_ns, double pan_rad);
   core::Status grid_rollup();
   core::Status replan();
   core::Status step_explorer(bool grid_updated);
