@@ -263,6 +263,7 @@ void write_counters(report::JsonWriter& json, const stack::Stack& stack) {
       .unsigned_integer("heap_allocations_in_sift", c.heap_allocations_in_sift)
       .end_object();
   const explore::ExploreCounters& e = stack.explorer().counters();
+  const explore::DoorSightingCounters& d = stack.explorer().door_sighting().counters();
   json.begin_object("explorer")
       .text("state", explore::to_string(stack.explorer().state()))
       .unsigned_integer("goals_chosen", e.goals_chosen)
@@ -299,14 +300,14 @@ void write_counters(report::JsonWriter& json, const stack::Stack& stack) {
       .unsigned_integer("plans_kept_for_walkers", e.plans_kept_for_walkers)
       .unsigned_integer("walker_waits_ended", e.walker_waits_ended)
       .unsigned_integer("looks", e.looks)
-      .unsigned_integer("door_scans", stack.explorer().door_sighting().counters().scans_at_doors)
-      .unsigned_integer("door_sightings", stack.explorer().door_sighting().counters().sightings)
-      .unsigned_integer("doors_sighted", stack.explorer().door_sighting().counters().doors_sighted)
-      .unsigned_integer("door_not_in_a_wall", stack.explorer().door_sighting().counters().not_in_a_wall)
-      .unsigned_integer("door_no_gap", stack.explorer().door_sighting().counters().no_gap)
-      .unsigned_integer("door_jamb_at_image_edge", stack.explorer().door_sighting().counters().jamb_at_image_edge)
-      .unsigned_integer("door_width_disagrees", stack.explorer().door_sighting().counters().width_disagrees)
-      .unsigned_integer("door_offset_too_large", stack.explorer().door_sighting().counters().offset_too_large)
+      .unsigned_integer("door_scans", d.scans_at_doors)
+      .unsigned_integer("door_sightings", d.sightings)
+      .unsigned_integer("doors_sighted", d.doors_sighted)
+      .unsigned_integer("door_not_in_a_wall", d.not_in_a_wall)
+      .unsigned_integer("door_no_gap", d.no_gap)
+      .unsigned_integer("door_jamb_at_image_edge", d.jamb_at_image_edge)
+      .unsigned_integer("door_width_disagrees", d.width_disagrees)
+      .unsigned_integer("door_offset_too_large", d.offset_too_large)
       .unsigned_integer("events_recorded", stack.explorer().journal().recorded())
       .unsigned_integer("events_dropped", stack.explorer().journal().dropped())
       .end_object();

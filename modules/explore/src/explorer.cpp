@@ -98,26 +98,24 @@ Eigen::Vector2d Explorer::stall_position(const ExploreInput& input) const {
 Eigen::Vector2i Explorer::cell_of(const core::Pose2& pose) const { return map_.grid().cell_of(position_of(pose)); }
 
 void Explorer::note(ExploreEventKind kind, const ExploreInput& input) {
+  note(kind, input, goal_.position, goal_.value);
+}
+
+void Explorer::note(ExploreEventKind kind, const ExploreInput& input, const Eigen::Vector2d& where, double value) {
   ExploreEvent event;
   event.time_s = input.time_s;
   event.kind = kind;
   event.pose = input.pose;
-  event.goal = goal_.position;
-  event.goal_value = goal_.value;
+  event.goal = where;
+  event.goal_value = value;
   journal_.record(event);
 }
 
 // The door's middle in the grid where other events have the goal, and the correction across
 // the door where they have its value.
 void Explorer::note_sighting(const ExploreInput& input) {
-  ExploreEvent event;
-  event.time_s = input.time_s;
-  event.kind = ExploreEventKind::door_sighted;
-  event.pose = input.pose;
-  event.goal = sighting_.door().middle;
   const Eigen::Vector2d across(-sighting_.door().along.y(), sighting_.door().along.x());
-  event.goal_value = sighting_.last_offset().dot(across);
-  journal_.record(event);
+  note(ExploreEventKind::door_sighted, input, sighting_.door().middle, sighting_.last_offset().dot(across));
 }
 
 const ExploreInput& Explorer::navigation_input(const ExploreInput& input) {

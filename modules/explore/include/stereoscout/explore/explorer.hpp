@@ -184,7 +184,8 @@ class Explorer {
   Eigen::Vector2i cell_of(const core::Pose2& pose) const;
   // Where the stall detector measures the travel from (explore.stall_from_odometry).
   Eigen::Vector2d stall_position(const ExploreInput& input) const;
-  void note(ExploreEventKind kind, const ExploreInput& input);
+  void note(ExploreEventKind kind, const ExploreInput& input);  // with the goal and its value
+  void note(ExploreEventKind kind, const ExploreInput& input, const Eigen::Vector2d& where, double value);
   void note_sighting(const ExploreInput& input);
 
   ExploreParams params_;
