@@ -30,7 +30,8 @@ bool DoorPassage::axis_target(const Eigen::Vector2d& robot, double lookahead_m, 
 
 bool DoorAxis::next_door(const Plan& plan, std::size_t progress, const NavigationMap& map,
                          const Eigen::Vector2d& robot, DoorPassage& door) const {
-  return find_door(plan, progress, map, robot, params_.explore.door_axis_before_m + kSearchBeyond_m, true,
+  return find_door(plan, progress, map, robot, params_.explore.door_axis_before_m + kSearchBeyond_m,
+                   !params_.explore.door_axis_all_gaps,
                    params_.safe_distance_m(map.grid().resolution_m), door);
 }
 

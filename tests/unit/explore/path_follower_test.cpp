@@ -176,6 +176,22 @@ TEST(PathFollower, PassesADoorTheGridHoldsWiderAlongItsAxis) {
   EXPECT_GT(on_axis, 0.09);
 }
 
+// The same door axis found among all the plan's waypoints with obstacle cells on both sides
+// (door_axis_all_gaps), so that the lookahead stays long wherever no waypoint lies within the
+// safety margin: the disc keeps nearly its 0.10 m in either grid too.
+TEST(PathFollower, PassesADoorTheGridHoldsWiderAlongTheAxisOfAnyGap) {
+  ExploreParams params = test_params(60, 80);
+  params.explore.narrow_clearance_m = 0.0;
+  params.explore.door_axis_before_m = 0.6;
+  params.explore.door_axis_all_gaps = true;
+  const double wider = least_clearance_m(params, true);
+  const double exact = least_clearance_m(params);
+  std::printf("least jamb clearance along the axis of any gap: %.3f m in the wider grid, %.3f m in the exact grid\n",
+              wider, exact);
+  EXPECT_GT(wider, 0.09);
+  EXPECT_GT(exact, 0.09);
+}
+
 // The same wider grid without the door's axis: a centring reach that finds the grid's jamb
 // cells (0.6 m from the door's middle there) on both sides of the waypoints in the door, and
 // the short lookahead within 0.6 m of an obstacle, keep the disc nearly its 0.10 m too, while
@@ -199,47 +215,65 @@ TEST(PathFollower, PassesADoorTheGridHoldsWiderCentredBetweenItsJambCells) {
 // The door is found where the plan's narrow stretch is narrowest, its middle between the grid's
 // jamb cells in either grid, its axis the way the plan passes. A door ahead that a new plan
 // no longer passes is dropped; one the robot is passing is kept until the disc has cleared it.
+// The same with the door looked for among all waypoints with obstacle cells on both sides.
 TEST(DoorAxis, FindsTheDoorOnThePlanAndKeepsItWhilePassing) {
-  ExploreParams params = test_params(60, 80);
-  params.explore.narrow_clearance_m = 0.6;
-  params.explore.door_axis_before_m = 0.6;
-  for (bool jamb_cells_free : {false, true}) {
-    Doorway door(params, jamb_cells_free);
+  {
+    // Without either, the grid that holds the door a cell wider has no narrow waypoint in it.
+    ExploreParams params = test_params(60, 80);
+    params.explore.door_axis_before_m = 0.6;
+    Doorway door(params, true);
     const Eigen::Vector2d robot(1.5, 4.9);
     ASSERT_TRUE(door.map.rebuild(door.grid.view(), robot, robot));
     ASSERT_EQ(door.planner.plan(door.map, {15, 49}, {25, 25}, door.plan), PlanResult::found);
     DoorAxis axis(params);
     axis.update(door.plan, 0, door.map, robot);
-    ASSERT_TRUE(axis.passage().known) << jamb_cells_free;
-    EXPECT_NEAR(axis.passage().middle.x(), kMiddleX, 1e-9);
-    EXPECT_NEAR(axis.passage().middle.y(), kWallY, 1e-9);
-    EXPECT_NEAR(axis.passage().along.y(), -1.0, 1e-9);
-    Eigen::Vector2d target(0.0, 0.0);
-    ASSERT_TRUE(axis.passage().axis_target({1.9, 4.5}, 0.15, 0.6, target));
-    EXPECT_NEAR(target.x(), kMiddleX, 1e-9);
-    EXPECT_NEAR(target.y(), 4.5 - 0.15, 1e-9);
-    EXPECT_FALSE(axis.passage().axis_target({1.9, 5.0}, 0.15, 0.6, target));  // 0.95 m before it
-
-    // Passed the other way, the same door turns its axis round.
-    ASSERT_EQ(door.planner.plan(door.map, {20, 30}, {15, 49}, door.plan), PlanResult::found);
-    axis.update(door.plan, 0, door.map, {2.05, 3.05});
-    ASSERT_TRUE(axis.passage().known);
-    EXPECT_NEAR(axis.passage().along.y(), 1.0, 1e-9);
-
-    // A plan along the corridor instead: the door ahead is dropped.
-    ASSERT_EQ(door.planner.plan(door.map, {15, 49}, {45, 49}, door.plan), PlanResult::found);
-    axis.update(door.plan, 0, door.map, robot);
     EXPECT_FALSE(axis.passage().known);
+  }
+  ExploreParams narrow = test_params(60, 80);
+  narrow.explore.narrow_clearance_m = 0.6;
+  narrow.explore.door_axis_before_m = 0.6;
+  ExploreParams all_gaps = test_params(60, 80);
+  all_gaps.explore.door_axis_before_m = 0.6;
+  all_gaps.explore.door_axis_all_gaps = true;
+  for (const ExploreParams& params : {narrow, all_gaps}) {
+    for (bool jamb_cells_free : {false, true}) {
+      Doorway door(params, jamb_cells_free);
+      const Eigen::Vector2d robot(1.5, 4.9);
+      ASSERT_TRUE(door.map.rebuild(door.grid.view(), robot, robot));
+      ASSERT_EQ(door.planner.plan(door.map, {15, 49}, {25, 25}, door.plan), PlanResult::found);
+      DoorAxis axis(params);
+      axis.update(door.plan, 0, door.map, robot);
+      ASSERT_TRUE(axis.passage().known) << jamb_cells_free;
+      EXPECT_NEAR(axis.passage().middle.x(), kMiddleX, 1e-9);
+      EXPECT_NEAR(axis.passage().middle.y(), kWallY, 1e-9);
+      EXPECT_NEAR(axis.passage().along.y(), -1.0, 1e-9);
+      Eigen::Vector2d target(0.0, 0.0);
+      ASSERT_TRUE(axis.passage().axis_target({1.9, 4.5}, 0.15, 0.6, target));
+      EXPECT_NEAR(target.x(), kMiddleX, 1e-9);
+      EXPECT_NEAR(target.y(), 4.5 - 0.15, 1e-9);
+      EXPECT_FALSE(axis.passage().axis_target({1.9, 5.0}, 0.15, 0.6, target));  // 0.95 m before it
 
-    // In the door, with a plan whose narrow stretch lies behind: kept until 0.5 m past it.
-    ASSERT_EQ(door.planner.plan(door.map, {15, 49}, {25, 25}, door.plan), PlanResult::found);
-    axis.update(door.plan, 0, door.map, robot);
-    ASSERT_TRUE(axis.passage().known);
-    ASSERT_EQ(door.planner.plan(door.map, {20, 30}, {40, 20}, door.plan), PlanResult::found);
-    axis.update(door.plan, 0, door.map, {2.0, 3.7});
-    EXPECT_TRUE(axis.passage().known);
-    axis.update(door.plan, 0, door.map, {2.0, 3.5});
-    EXPECT_FALSE(axis.passage().known);
+      // Passed the other way, the same door turns its axis round.
+      ASSERT_EQ(door.planner.plan(door.map, {20, 30}, {15, 49}, door.plan), PlanResult::found);
+      axis.update(door.plan, 0, door.map, {2.05, 3.05});
+      ASSERT_TRUE(axis.passage().known);
+      EXPECT_NEAR(axis.passage().along.y(), 1.0, 1e-9);
+
+      // A plan along the corridor instead: the door ahead is dropped.
+      ASSERT_EQ(door.planner.plan(door.map, {15, 49}, {45, 49}, door.plan), PlanResult::found);
+      axis.update(door.plan, 0, door.map, robot);
+      EXPECT_FALSE(axis.passage().known);
+
+      // In the door, with a plan whose narrow stretch lies behind: kept until 0.5 m past it.
+      ASSERT_EQ(door.planner.plan(door.map, {15, 49}, {25, 25}, door.plan), PlanResult::found);
+      axis.update(door.plan, 0, door.map, robot);
+      ASSERT_TRUE(axis.passage().known);
+      ASSERT_EQ(door.planner.plan(door.map, {20, 30}, {40, 20}, door.plan), PlanResult::found);
+      axis.update(door.plan, 0, door.map, {2.0, 3.7});
+      EXPECT_TRUE(axis.passage().known);
+      axis.update(door.plan, 0, door.map, {2.0, 3.5});
+      EXPECT_FALSE(axis.passage().known);
+    }
   }
 }
 
