@@ -79,14 +79,21 @@ bool find_door(const Plan& plan, std::size_t progress, const NavigationMap& map,
   return std::isfinite(narrowest);
 }
 
+bool same_door(const DoorPassage& a, const DoorPassage& b) {
+  return a.known && b.known && (a.middle - b.middle).norm() <= kSameDoor_m && a.along.dot(b.along) > 0.0;
+}
+
+void DoorAxis::follow_sighting(const DoorPassage& sighted) {
+  if (!sighted.known) return;
+  if (!passage_.known || same_door(sighted, passage_)) passage_ = sighted;
+}
+
 void DoorAxis::update(const Plan& plan, std::size_t progress, const NavigationMap& map, const Eigen::Vector2d& robot) {
   DoorPassage door;
   if (next_door(plan, progress, map, robot, door)) {
     // A door found again, passed the same way, keeps its axis: the robot steers by one line
     // through it.
-    const bool same = passage_.known && (door.middle - passage_.middle).norm() <= kSameDoor_m &&
-                      door.along.dot(passage_.along) > 0.0;
-    if (!same) passage_ = door;
+    if (!same_door(door, passage_)) passage_ = door;
     return;
   }
   // No door ahead on this plan: the one the robot is passing is kept until the disc has

@@ -7,14 +7,8 @@ namespace {
 // A jamb's ray must meet the door's line at least this steeply (cosine to the axis): a ray
 // along the wall meets it anywhere.
 constexpr double kMinRayAlongAxis = 0.25;
-// Doors whose middles lie nearer than this to each other are the same door.
-constexpr double kSameDoor_m = 0.3;
 
 Eigen::Vector2d left_of(const Eigen::Vector2d& direction) { return {-direction.y(), direction.x()}; }
-
-bool same_door(const DoorPassage& a, const DoorPassage& b) {
-  return a.known && b.known && (a.middle - b.middle).norm() <= kSameDoor_m && a.along.dot(b.along) > 0.0;
-}
 
 // Where the ray from `origin` through `point` meets the door's line; false when it meets it
 // too obliquely or behind the origin.

@@ -559,6 +559,7 @@ void Explorer::finish_look(const ExploreInput& input) {
 void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
   if (params_.explore.door_axis_before_m > 0.0) {
     door_axis_.update(plan_, follower_.progress(), map_, position_of(input.pose));
+    if (sighting_.holding()) door_axis_.follow_sighting(sighting_.door());
   }
   const FollowResult follow = follower_.follow(plan_, input.pose, door_axis_.passage());
   if (follow.reached) {

@@ -271,5 +271,40 @@ TEST(DoorAxis, FindsTheDoorOnThePlanAndKeepsItWhilePassing) {
   }
 }
 
+// A held door sighting measured the pose against its own find of the door, whose middle can lie
+// a cell aside of the axis's (the grid's jamb cells move between plans): the axis runs through
+// the sighted door from then on, and later finds of the same door keep it there. Another door
+// leaves the axis as it is.
+TEST(DoorAxis, RunsThroughTheDoorTheSightingMeasuredThePoseAgainst) {
+  ExploreParams params = test_params(60, 80);
+  params.explore.door_axis_before_m = 0.6;
+  params.explore.door_axis_all_gaps = true;
+  Doorway door(params);
+  const Eigen::Vector2d robot(1.5, 4.9);
+  ASSERT_TRUE(door.map.rebuild(door.grid.view(), robot, robot));
+  ASSERT_EQ(door.planner.plan(door.map, {15, 49}, {25, 25}, door.plan), PlanResult::found);
+  DoorAxis axis(params);
+  axis.update(door.plan, 0, door.map, robot);
+  ASSERT_TRUE(axis.passage().known);
+  ASSERT_NEAR(axis.passage().middle.x(), kMiddleX, 1e-9);
+
+  DoorPassage sighted = axis.passage();
+  sighted.middle.x() += 0.1;
+  axis.follow_sighting(sighted);
+  EXPECT_NEAR(axis.passage().middle.x(), kMiddleX + 0.1, 1e-9);
+  axis.update(door.plan, 0, door.map, robot);
+  EXPECT_NEAR(axis.passage().middle.x(), kMiddleX + 0.1, 1e-9);
+
+  DoorPassage other = sighted;
+  other.middle.x() += 1.0;
+  axis.follow_sighting(other);
+  EXPECT_NEAR(axis.passage().middle.x(), kMiddleX + 0.1, 1e-9);
+
+  DoorAxis fresh(params);
+  fresh.follow_sighting(sighted);
+  EXPECT_TRUE(fresh.passage().known);
+  EXPECT_NEAR(fresh.passage().middle.x(), kMiddleX + 0.1, 1e-9);
+}
+
 }  // namespace
 }  // namespace stereoscout::explore

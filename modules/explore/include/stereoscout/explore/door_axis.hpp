@@ -47,6 +47,10 @@ struct DoorPassage {
 bool find_door(const Plan& plan, std::size_t progress, const NavigationMap& map, const Eigen::Vector2d& robot,
                double search_m, bool narrow_only, double clear_after_m, DoorPassage& door);
 
+// Both known, their middles within 0.3 m of each other, passed the same way: one door, found
+// again on another plan or in another grid.
+bool same_door(const DoorPassage& a, const DoorPassage& b);
+
 class DoorAxis {
  public:
   explicit DoorAxis(const ExploreParams& params) : params_(params) {}
@@ -55,6 +59,12 @@ class DoorAxis {
   // With the plan being followed (`progress`: the follower's) and the map it was made on.
   void update(const Plan& plan, std::size_t progress, const NavigationMap& map, const Eigen::Vector2d& robot);
   const DoorPassage& passage() const { return passage_; }
+  // The door a held door sighting measured the pose against (DoorSighting::door()): when it is
+  // the passage's door, or no passage is known, the axis runs through it from now on. The
+  // sighting's correction puts the robot right against that door; the grid's jamb cells move
+  // between plans, and an axis kept from an earlier plan 0.05-0.1 m aside of it spent the
+  // correction (office seed 3 at N3's door).
+  void follow_sighting(const DoorPassage& sighted);
 
   // The door of the plan's next narrow stretch; false when it has none near enough.
   bool next_door(const Plan& plan, std::size_t progress, const NavigationMap& map, const Eigen::Vector2d& robot,
