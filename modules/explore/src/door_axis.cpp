@@ -84,8 +84,7 @@ bool same_door(const DoorPassage& a, const DoorPassage& b) {
 }
 
 void DoorAxis::follow_sighting(const DoorPassage& sighted) {
-  if (!sighted.known) return;
-  if (!passage_.known || same_door(sighted, passage_)) passage_ = sighted;
+  if (same_door(sighted, passage_)) passage_ = sighted;
 }
 
 void DoorAxis::update(const Plan& plan, std::size_t progress, const NavigationMap& map, const Eigen::Vector2d& robot) {

@@ -60,10 +60,11 @@ class DoorAxis {
   void update(const Plan& plan, std::size_t progress, const NavigationMap& map, const Eigen::Vector2d& robot);
   const DoorPassage& passage() const { return passage_; }
   // The door a held door sighting measured the pose against (DoorSighting::door()): when it is
-  // the passage's door, or no passage is known, the axis runs through it from now on. The
-  // sighting's correction puts the robot right against that door; the grid's jamb cells move
-  // between plans, and an axis kept from an earlier plan 0.05-0.1 m aside of it spent the
-  // correction (office seed 3 at N3's door).
+  // the passage's door, the axis runs through it from now on. The sighting's correction puts
+  // the robot right against that door; the grid's jamb cells move between plans, and an axis
+  // kept from an earlier plan 0.05-0.1 m aside of it spent the correction (office seed 3 at
+  // N3's door). A sighting is held until the door is passed, so with no passage known (the
+  // plan no longer passes the door, or not yet near enough) it brings back no axis.
   void follow_sighting(const DoorPassage& sighted);
 
   // The door of the plan's next narrow stretch; false when it has none near enough.
