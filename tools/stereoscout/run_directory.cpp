@@ -264,6 +264,7 @@ void write_counters(report::JsonWriter& json, const stack::Stack& stack) {
       .end_object();
   const explore::ExploreCounters& e = stack.explorer().counters();
   const explore::DoorSightingCounters& d = stack.explorer().door_sighting().counters();
+  const explore::DoorStandoffCounters& o = stack.explorer().door_standoff().counters();
   json.begin_object("explorer")
       .text("state", explore::to_string(stack.explorer().state()))
       .unsigned_integer("goals_chosen", e.goals_chosen)
@@ -308,6 +309,12 @@ void write_counters(report::JsonWriter& json, const stack::Stack& stack) {
       .unsigned_integer("door_jamb_at_image_edge", d.jamb_at_image_edge)
       .unsigned_integer("door_width_disagrees", d.width_disagrees)
       .unsigned_integer("door_offset_too_large", d.offset_too_large)
+      .unsigned_integer("door_standoff_doors", o.doors)
+      .unsigned_integer("door_standoffs", o.stood_off)
+      .unsigned_integer("door_standoff_sighted", o.sighted)
+      .unsigned_integer("door_standoff_too_near", o.too_near)
+      .unsigned_integer("door_standoff_way_shut", o.way_shut)
+      .unsigned_integer("door_standoff_timed_out", o.timed_out)
       .unsigned_integer("events_recorded", stack.explorer().journal().recorded())
       .unsigned_integer("events_dropped", stack.explorer().journal().dropped())
       .end_object();

@@ -89,6 +89,7 @@ Explorer::Explorer(const ExploreParams& params)
       follower_(params),
       door_axis_(params),
       sighting_(params),
+      standoff_(params),
       plan_(static_cast<std::size_t>(params.explore.max_plan_waypoints)) {}
 
 Eigen::Vector2d Explorer::stall_position(const ExploreInput& input) const {
@@ -623,7 +624,9 @@ void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
   // The current grid, with the contact cells when there are any (stamped at the last rebuild,
   // which follows every grid update).
   const GridView& grid = planning_on_copy_ ? planning_grid_ : input.grid;
-  const Blocked blocked = follow.command.linear_mps > 0.0 ? stretch_blocked(grid, input) : Blocked::no;
+  core::DriveCommand command = follow.command;
+  stand_off(grid, input, command);
+  const Blocked blocked = command.linear_mps > 0.0 ? stretch_blocked(grid, input) : Blocked::no;
   if (blocked != Blocked::no && turn_to_face_plan(grid, input, output)) return;
   if (blocked == Blocked::by_scan) {
     hold_for_scan(input);
@@ -633,10 +636,30 @@ void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
   if (blocked == Blocked::by_grid) {
     ++counters_.safety_stops;
     note(ExploreEventKind::safety_stop, input);
-    stop_and_look(input, output, follow.command.angular_rad_s);
+    stop_and_look(input, output, command.angular_rad_s);
     return;
   }
-  output.drive = follow.command;
+  output.drive = command;
+}
+
+void Explorer::stand_off(const GridView& grid, const ExploreInput& input, core::DriveCommand& command) {
+  if (!standoff_.enabled()) return;
+  const DoorPassage& passage = door_axis_.passage();
+  const bool sighted = sighting_.holding() && same_door(sighting_.door(), passage);
+  const bool way_clear =
+      passage.known && standoff_.wants_way() && straight_way_clear(grid, input, standoff_.point(passage));
+  standoff_.steer(passage, sighted, way_clear, input.pose, input.time_s, command);
+}
+
+bool Explorer::straight_way_clear(const GridView& grid, const ExploreInput& input, const Eigen::Vector2d& point) const {
+  const Eigen::Vector2d robot = position_of(input.pose);
+  const double length_m = (point - robot).norm();
+  const double step_m = kBackOffCheckStep_cells * grid.resolution_m;
+  for (double along_m = step_m; along_m < length_m + step_m; along_m += step_m) {
+    const Eigen::Vector2d centre = robot + std::min(along_m, length_m) / std::max(length_m, 1e-9) * (point - robot);
+    if (grid_blocks_disc(grid, centre, robot, input.time_s)) return false;
+  }
+  return true;
 }
 
 // Pure pursuit cuts the plan's corners; beside an obstacle the cut can touch it where the plan

@@ -12,6 +12,29 @@ constexpr std::size_t kProgressWindow = 12;
 constexpr double kTurnGain = 2.0;
 }  // namespace
 
+core::DriveCommand turn_in_place(double error_rad, const ExploreParams& params) {
+  core::DriveCommand command;
+  const double max_turn = params.max_turn_rate_rad_s;
+  command.angular_rad_s = std::clamp(kTurnGain * error_rad, -max_turn, max_turn);
+  return command;
+}
+
+core::DriveCommand pursue(const Eigen::Vector2d& target, const core::Pose2& pose, const ExploreParams& params) {
+  const Eigen::Vector2d to_target = target - Eigen::Vector2d(pose.x, pose.y);
+  const double alpha = core::wrap_angle(std::atan2(to_target.y(), to_target.x()) - pose.theta);
+  if (std::abs(alpha) > core::degrees_to_radians(params.explore.turn_in_place_deg)) return turn_in_place(alpha, params);
+  // Pure pursuit: the arc through the target point has curvature 2 sin(alpha) / L.
+  const double max_turn = params.max_turn_rate_rad_s;
+  const double length = std::max(to_target.norm(), 1e-3);
+  const double curvature = 2.0 * std::sin(alpha) / length;
+  double speed = params.max_speed_mps;
+  if (std::abs(curvature) * speed > max_turn) speed = max_turn / std::abs(curvature);
+  core::DriveCommand command;
+  command.linear_mps = speed;
+  command.angular_rad_s = std::clamp(speed * curvature, -max_turn, max_turn);
+  return command;
+}
+
 // The first waypoint from the nearest one on that is at least `lookahead_m` away (the last
 // one when none is).
 std::size_t PathFollower::lookahead_point(const Plan& plan, const Eigen::Vector2d& position, double lookahead_m) const {
@@ -59,20 +82,7 @@ FollowResult PathFollower::follow(const Plan& plan, const core::Pose2& pose, con
   Eigen::Vector2d target_point = plan.waypoints[target];
   const double axis_lookahead_m = narrow_lookahead_m > 0.0 ? narrow_lookahead_m : params_.explore.lookahead_m;
   door.axis_target(position, axis_lookahead_m, params_.explore.door_axis_before_m, target_point);
-  const Eigen::Vector2d to_target = target_point - position;
-  const double alpha = core::wrap_angle(std::atan2(to_target.y(), to_target.x()) - pose.theta);
-  const double max_turn = params_.max_turn_rate_rad_s;
-  if (std::abs(alpha) > core::degrees_to_radians(params_.explore.turn_in_place_deg)) {
-    result.command.angular_rad_s = std::clamp(kTurnGain * alpha, -max_turn, max_turn);
-    return result;
-  }
-  // Pure pursuit: the arc through the target point has curvature 2 sin(alpha) / L.
-  const double length = std::max(to_target.norm(), 1e-3);
-  const double curvature = 2.0 * std::sin(alpha) / length;
-  double speed = params_.max_speed_mps;
-  if (std::abs(curvature) * speed > max_turn) speed = max_turn / std::abs(curvature);
-  result.command.linear_mps = speed;
-  result.command.angular_rad_s = std::clamp(speed * curvature, -max_turn, max_turn);
+  result.command = pursue(target_point, pose, params_);
   return result;
 }
 

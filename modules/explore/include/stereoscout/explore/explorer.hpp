@@ -26,7 +26,9 @@
 // grid holds only some updates later).
 // With door_axis_before_m, it steers along the axis of the door the plan passes next
 // (door_axis.hpp). With door_sighting_range_m, it navigates by a pose corrected across that
-// door by where the latest scans saw its gap (door_sighting.hpp).
+// door by where the latest scans saw its gap (door_sighting.hpp). With both and
+// door_standoff_m, it first looks at a door it has no sighting of square on, from a point on
+// its axis (door_standoff.hpp).
 // If facing the plan's next waypoint would clear the way (pure pursuit cut a corner beside an
 // obstacle), it turns in place to face it instead. Otherwise, with pan_at_goal, it looks around
 // (a standing robot makes no observation update, so nothing would clear a person's trace)
@@ -46,6 +48,7 @@
 #include "stereoscout/explore/contact_memory.hpp"
 #include "stereoscout/explore/door_axis.hpp"
 #include "stereoscout/explore/door_sighting.hpp"
+#include "stereoscout/explore/door_standoff.hpp"
 #include "stereoscout/explore/explore_journal.hpp"
 #include "stereoscout/explore/goal_value.hpp"
 #include "stereoscout/explore/grid_view.hpp"
@@ -129,6 +132,7 @@ class Explorer {
   const ContactMemory& contacts() const { return contacts_; }
   const RecentObstacles& recent_obstacles() const { return recent_; }
   const DoorSighting& door_sighting() const { return sighting_; }
+  const DoorStandoff& door_standoff() const { return standoff_; }
   const ExploreJournal& journal() const { return journal_; }
 
  private:
@@ -174,6 +178,10 @@ class Explorer {
   enum class Blocked : std::uint8_t { no, by_grid, by_scan };
   Blocked stretch_blocked(const GridView& grid, const ExploreInput& input) const;
   bool turn_to_face_plan(const GridView& grid, const ExploreInput& input, ExploreOutput& output);
+  // The door standoff's command in place of `command` while it stands off (door_standoff.hpp).
+  void stand_off(const GridView& grid, const ExploreInput& input, core::DriveCommand& command);
+  // Whether the disc can drive straight from the robot to `point` (the planning grid).
+  bool straight_way_clear(const GridView& grid, const ExploreInput& input, const Eigen::Vector2d& point) const;
   Blocked disc_blocked(const GridView& grid, const Eigen::Vector2d& centre, const Eigen::Vector2d& robot,
                        const ExploreInput& input) const;
   bool grid_blocks_disc(const GridView& grid, const Eigen::Vector2d& centre, const Eigen::Vector2d& robot,
@@ -210,6 +218,7 @@ class Explorer {
   PathFollower follower_;
   DoorAxis door_axis_;
   DoorSighting sighting_;
+  DoorStandoff standoff_;
   ExploreInput navigation_input_;
   // The latest scan's points were placed with the estimate's pose: moved by the sighting's
   // correction now (zero without one), they lie where the navigation pose puts them.

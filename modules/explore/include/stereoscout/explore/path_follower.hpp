@@ -20,6 +20,13 @@
 
 namespace stereoscout::explore {
 
+// The command that takes `pose` towards `target`: a turn in place while the target lies more
+// than turn_in_place_deg off the heading, else the pure-pursuit arc through it, slowed so that
+// the turn-rate limit keeps the arc.
+core::DriveCommand pursue(const Eigen::Vector2d& target, const core::Pose2& pose, const ExploreParams& params);
+// A turn in place by `error_rad`, proportional to it within the turn-rate limit.
+core::DriveCommand turn_in_place(double error_rad, const ExploreParams& params);
+
 struct FollowResult {
   core::DriveCommand command;
   bool reached = false;         // within goal_tolerance_m of the last waypoint

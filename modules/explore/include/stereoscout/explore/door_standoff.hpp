@@ -1,0 +1,84 @@
+#pragma once
+// Door standoff (explore.door_standoff_m): look at a door square on before passing it.
+//
+// A door sighting (door_sighting.hpp) corrects the pose across a door only from a scan taken
+// with the camera at least DoorSighting::kMinAhead_m before the door's line and both jambs
+// well inside the image. A door in a corridor's side wall is seen only obliquely until the
+// robot turns into it, and by then it is too near; a robot that turned round just past a door
+// is nearer still. Over windows of five office seeds, with sighting and axis at 1.4 m, 1 to 10
+// doors a run were sighted, most door scans saw no gap or a jamb at the image's edge, and the
+// one contact left was met on an approach without a sighting (docs/results.md).
+//
+// When the plan passes a door (the door axis's passage) that no sighting is held for, the
+// robot first drives to the standoff point on the door's axis, door_standoff_m before its
+// middle, then turns in place to face along the axis: the turn brings an update (and a scan)
+// each degree, and the last ones see the door square on. Then it goes on along the axis. The
+// door is given up, and the robot goes on as without a standoff, once a sighting of it is
+// held, when the straight way to the point is not clear (the caller checks it), when the robot
+// stands nearer the door than the point and its camera, turned along the axis, would stand
+// nearer than kMinAhead_m, or kGiveUp_s after the door was first found.
+//
+// Fixed-size state; steer() allocates nothing.
+
+#include <cstdint>
+
+#include <Eigen/Core>
+
+#include "stereoscout/core/geometry.hpp"
+#include "stereoscout/core/messages.hpp"
+#include "stereoscout/explore/door_axis.hpp"
+#include "stereoscout/explore/grid_view.hpp"
+
+namespace stereoscout::explore {
+
+struct DoorStandoffCounters {
+  std::uint64_t doors = 0;      // doors on the plan without a sighting, while on
+  std::uint64_t stood_off = 0;  // of them: the robot reached the point (or could turn where it stood)
+  std::uint64_t sighted = 0;    // of them: a sighting held before the robot faced along the axis
+  std::uint64_t too_near = 0;   // given up: found with the robot too near to turn and see it
+  std::uint64_t way_shut = 0;   // given up: the straight way to the point not clear
+  std::uint64_t timed_out = 0;  // given up: kGiveUp_s after the door was found
+};
+
+class DoorStandoff {
+ public:
+  // The point is reached within this distance of it (at 0.12 m/s a 20 Hz drive tick moves
+  // 0.006 m).
+  static constexpr double kReached_m = 0.05;
+  // Facing along the axis within this angle (the turn's updates come every degree).
+  static constexpr double kFacing_rad = 0.03;
+  // A door not stood off for this long after it was found is given up: something the grid
+  // does not hold keeps the robot from the point, and the stall and stuck rules act on the
+  // plan's progress, which the standoff does not make.
+  static constexpr double kGiveUp_s = 30.0;
+
+  explicit DoorStandoff(const ExploreParams& params);
+
+  bool enabled() const { return standoff_m_ > 0.0; }
+  void reset();
+  // The point `passage`'s standoff drives to.
+  Eigen::Vector2d point(const DoorPassage& passage) const;
+  // Whether steer() needs `way_clear` (it drives to the point, or may begin to).
+  bool wants_way() const;
+  // Whether the robot, at `pose` with the door axis's `passage` (known or not) and `sighted`
+  // (a sighting of that door is held), stands off for it now: then `command` is the drive
+  // command. `way_clear`: the disc can drive straight from the robot to point(passage).
+  bool steer(const DoorPassage& passage, bool sighted, bool way_clear, const core::Pose2& pose, double time_s,
+             core::DriveCommand& command);
+  const DoorStandoffCounters& counters() const { return counters_; }
+
+ private:
+  enum class Phase : std::uint8_t { none, approach, face, done };
+
+  void begin(const DoorPassage& passage, bool sighted, const core::Pose2& pose, double time_s);
+  void give_up(std::uint64_t& reason);
+
+  ExploreParams params_;
+  double standoff_m_ = 0.0;
+  DoorPassage door_;
+  Phase phase_ = Phase::none;
+  double found_time_s_ = 0.0;
+  DoorStandoffCounters counters_;
+};
+
+}  // namespace stereoscout::explore

@@ -1,0 +1,92 @@
+#include "stereoscout/explore/door_standoff.hpp"
+
+#include <cmath>
+
+#include "stereoscout/explore/door_sighting.hpp"
+#include "stereoscout/explore/path_follower.hpp"
+
+namespace stereoscout::explore {
+namespace {
+// A door stood off for (or given up) is remembered while the robot stays this near it: a plan
+// that loses the door for a tick, or a new plan through it, brings no second standoff.
+constexpr double kForget_m = 3.0;
+}  // namespace
+
+DoorStandoff::DoorStandoff(const ExploreParams& params) : params_(params), standoff_m_(params.explore.door_standoff_m) {}
+
+void DoorStandoff::reset() {
+  door_ = DoorPassage();
+  phase_ = Phase::none;
+}
+
+Eigen::Vector2d DoorStandoff::point(const DoorPassage& passage) const {
+  return passage.middle - standoff_m_ * passage.along;
+}
+
+bool DoorStandoff::wants_way() const { return phase_ == Phase::none || phase_ == Phase::approach; }
+
+void DoorStandoff::begin(const DoorPassage& passage, bool sighted, const core::Pose2& pose, double time_s) {
+  door_ = passage;
+  found_time_s_ = time_s;
+  if (sighted) {
+    phase_ = Phase::done;
+    return;
+  }
+  ++counters_.doors;
+  const double ahead = passage.along.dot(pose.translation() - passage.middle);
+  if (ahead <= -(standoff_m_ - kReached_m)) {
+    phase_ = Phase::approach;
+  } else if (ahead + params_.camera_forward_m < -DoorSighting::kMinAhead_m) {
+    ++counters_.stood_off;
+    phase_ = Phase::face;
+  } else {
+    give_up(counters_.too_near);
+  }
+}
+
+void DoorStandoff::give_up(std::uint64_t& reason) {
+  ++reason;
+  phase_ = Phase::done;
+}
+
+bool DoorStandoff::steer(const DoorPassage& passage, bool sighted, bool way_clear, const core::Pose2& pose,
+                         double time_s, core::DriveCommand& command) {
+  if (!enabled()) return false;
+  if (!passage.known) {
+    if (phase_ != Phase::none && (pose.translation() - door_.middle).norm() > kForget_m) reset();
+    return false;
+  }
+  if (phase_ == Phase::none || !same_door(passage, door_)) begin(passage, sighted, pose, time_s);
+  if (phase_ == Phase::done) return false;
+  if (sighted) {
+    ++counters_.sighted;
+    phase_ = Phase::done;
+    return false;
+  }
+  if (time_s - found_time_s_ > kGiveUp_s) {
+    give_up(counters_.timed_out);
+    return false;
+  }
+  if (phase_ == Phase::approach) {
+    const Eigen::Vector2d standoff = point(passage);
+    if ((pose.translation() - standoff).norm() > kReached_m) {
+      if (!way_clear) {
+        give_up(counters_.way_shut);
+        return false;
+      }
+      command = pursue(standoff, pose, params_);
+      return true;
+    }
+    ++counters_.stood_off;
+    phase_ = Phase::face;
+  }
+  const double error_rad = core::wrap_angle(std::atan2(passage.along.y(), passage.along.x()) - pose.theta);
+  if (std::abs(error_rad) < kFacing_rad) {
+    phase_ = Phase::done;
+    return false;
+  }
+  command = turn_in_place(error_rad, params_);
+  return true;
+}
+
+}  // namespace stereoscout::explore

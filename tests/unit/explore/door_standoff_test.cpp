@@ -1,0 +1,153 @@
+// Door standoff (door_standoff.hpp) driving a kinematic robot at the drive task's 20 Hz. The
+// explorer standing off for a door in a corridor's side wall, and the sighting that follows,
+// are in door_sighting_test.cpp.
+#include "stereoscout/explore/door_standoff.hpp"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "test_grid.hpp"
+
+namespace stereoscout::explore {
+namespace {
+
+constexpr double kTick_s = 0.05;
+
+ExploreParams standoff_params() {
+  ExploreParams params = testing::test_params(100, 100);
+  params.explore.door_standoff_m = 1.0;
+  return params;
+}
+
+// A door in a corridor's south wall (y 3.05), passed southwards into the room.
+DoorPassage side_door() {
+  DoorPassage door;
+  door.known = true;
+  door.middle = {5.0, 3.05};
+  door.along = {0.0, -1.0};
+  door.width_m = 0.9;
+  door.clear_after_m = 0.55;
+  return door;
+}
+
+void move(core::Pose2& pose, const core::DriveCommand& command) {
+  pose.x += command.linear_mps * kTick_s * std::cos(pose.theta);
+  pose.y += command.linear_mps * kTick_s * std::sin(pose.theta);
+  pose.theta = core::wrap_angle(pose.theta + command.angular_rad_s * kTick_s);
+}
+
+// Steers until the standoff lets go (or `seconds` pass); the time it took.
+double stand_off(DoorStandoff& standoff, const DoorPassage& door, core::Pose2& pose, double seconds = 60.0,
+                 bool way_clear = true) {
+  double time_s = 0.0;
+  core::DriveCommand command;
+  while (time_s < seconds && standoff.steer(door, false, way_clear, pose, time_s, command)) {
+    move(pose, command);
+    time_s += kTick_s;
+  }
+  return time_s;
+}
+
+// From the corridor, driving along it past the door's side: to the point 1 m before the door
+// on its axis, then a quarter turn to face the door.
+TEST(DoorStandoff, DrivesToThePointOnTheAxisThenFacesTheDoor) {
+  DoorStandoff standoff(standoff_params());
+  const DoorPassage door = side_door();
+  core::Pose2 pose{3.6, 4.2, 0.0};
+  const double took_s = stand_off(standoff, door, pose);
+  EXPECT_LT(took_s, DoorStandoff::kGiveUp_s);
+  EXPECT_NEAR(pose.x, 5.0, DoorStandoff::kReached_m + 0.01);
+  EXPECT_NEAR(pose.y, 4.05, DoorStandoff::kReached_m + 0.01);
+  EXPECT_NEAR(pose.theta, -core::kPi / 2.0, DoorStandoff::kFacing_rad);
+  EXPECT_EQ(standoff.counters().doors, 1U);
+  EXPECT_EQ(standoff.counters().stood_off, 1U);
+  // Done with this door: the follower drives on.
+  core::DriveCommand command;
+  EXPECT_FALSE(standoff.steer(door, false, true, pose, took_s + kTick_s, command));
+}
+
+// Nearer than the point but with the camera far enough before the door's line: it only turns.
+TEST(DoorStandoff, TurnsWhereItStandsWhenThatIsFarEnoughBeforeTheDoor) {
+  DoorStandoff standoff(standoff_params());
+  core::Pose2 pose{5.3, 3.95, 0.0};  // 0.9 m before the line; the camera, turned, 0.8 m
+  stand_off(standoff, side_door(), pose);
+  EXPECT_NEAR(pose.x, 5.3, 1e-9);
+  EXPECT_NEAR(pose.y, 3.95, 1e-9);
+  EXPECT_NEAR(pose.theta, -core::kPi / 2.0, DoorStandoff::kFacing_rad);
+  EXPECT_EQ(standoff.counters().stood_off, 1U);
+}
+
+// A robot that turned round just past the door, its camera nearer than 0.7 m to the line when
+// facing it, is left to the follower.
+TEST(DoorStandoff, LeavesADoorTheRobotIsTooNearToSee) {
+  DoorStandoff standoff(standoff_params());
+  core::Pose2 pose{5.0, 3.6, core::kPi / 2.0};
+  core::DriveCommand command;
+  EXPECT_FALSE(standoff.steer(side_door(), false, true, pose, 0.0, command));
+  EXPECT_EQ(standoff.counters().too_near, 1U);
+  EXPECT_EQ(standoff.counters().stood_off, 0U);
+}
+
+TEST(DoorStandoff, GivesTheDoorUpOnceSightedOrWhenTheWayIsShut) {
+  const DoorPassage door = side_door();
+  {
+    DoorStandoff standoff(standoff_params());
+    core::Pose2 pose{3.6, 4.2, 0.0};
+    stand_off(standoff, door, pose, 2.0);
+    core::DriveCommand command;
+    EXPECT_FALSE(standoff.steer(door, true, true, pose, 2.0, command));
+    EXPECT_EQ(standoff.counters().sighted, 1U);
+    // The sighting dropped again, it is the same door: no second standoff.
+    EXPECT_FALSE(standoff.steer(door, false, true, pose, 2.05, command));
+  }
+  {
+    DoorStandoff standoff(standoff_params());
+    core::Pose2 pose{3.6, 4.2, 0.0};
+    core::DriveCommand command;
+    EXPECT_FALSE(standoff.steer(door, false, false, pose, 0.0, command));
+    EXPECT_EQ(standoff.counters().way_shut, 1U);
+  }
+}
+
+// Kept from the point by something the grid does not hold (the robot does not move here).
+TEST(DoorStandoff, GivesTheDoorUpAfterItsTimeLimit) {
+  DoorStandoff standoff(standoff_params());
+  const core::Pose2 pose{3.6, 4.2, 0.0};
+  core::DriveCommand command;
+  double time_s = 0.0;
+  while (time_s < 60.0 && standoff.steer(side_door(), false, true, pose, time_s, command)) time_s += kTick_s;
+  EXPECT_NEAR(time_s, DoorStandoff::kGiveUp_s, 2.0 * kTick_s);
+  EXPECT_EQ(standoff.counters().timed_out, 1U);
+}
+
+// A plan that loses the door for a while brings no second standoff near it; far from it the
+// door is forgotten, and a later approach stands off again.
+TEST(DoorStandoff, StandsOffOncePerApproach) {
+  DoorStandoff standoff(standoff_params());
+  const DoorPassage door = side_door();
+  core::Pose2 pose{3.6, 4.2, 0.0};
+  const double took_s = stand_off(standoff, door, pose);
+  core::DriveCommand command;
+  EXPECT_FALSE(standoff.steer(DoorPassage(), false, true, pose, took_s, command));
+  EXPECT_FALSE(standoff.steer(door, false, true, pose, took_s + kTick_s, command));
+  EXPECT_EQ(standoff.counters().doors, 1U);
+  const core::Pose2 far{9.0, 4.2, core::kPi};
+  EXPECT_FALSE(standoff.steer(DoorPassage(), false, true, far, took_s + 40.0, command));
+  core::Pose2 back{3.6, 4.2, 0.0};
+  stand_off(standoff, door, back);
+  EXPECT_EQ(standoff.counters().doors, 2U);
+  EXPECT_EQ(standoff.counters().stood_off, 2U);
+}
+
+TEST(DoorStandoff, OffByDefault) {
+  DoorStandoff standoff(testing::test_params(100, 100));
+  core::Pose2 pose{3.6, 4.2, 0.0};
+  core::DriveCommand command;
+  EXPECT_FALSE(standoff.enabled());
+  EXPECT_FALSE(standoff.steer(side_door(), false, true, pose, 0.0, command));
+  EXPECT_EQ(standoff.counters().doors, 0U);
+}
+
+}  // namespace
+}  // namespace stereoscout::explore
