@@ -1,6 +1,6 @@
 // Door standoff (door_standoff.hpp) driving a kinematic robot at the drive task's 20 Hz. The
 // explorer standing off for a door in a corridor's side wall, and the sighting that follows,
-// are in door_sighting_test.cpp.
+// are in door_sighting_test.cpp (Explorer.StandingOffBeforeASideDoorLetsTheSightingKeepTheRobotClear).
 #include "stereoscout/explore/door_standoff.hpp"
 
 #include <cmath>
