@@ -312,6 +312,7 @@ void write_counters(report::JsonWriter& json, const stack::Stack& stack) {
       .unsigned_integer("door_standoff_doors", o.doors)
       .unsigned_integer("door_standoffs", o.stood_off)
       .unsigned_integer("door_standoff_sighted", o.sighted)
+      .unsigned_integer("door_standoff_not_in_a_wall", o.not_in_a_wall)
       .unsigned_integer("door_standoff_too_near", o.too_near)
       .unsigned_integer("door_standoff_way_shut", o.way_shut)
       .unsigned_integer("door_standoff_timed_out", o.timed_out)

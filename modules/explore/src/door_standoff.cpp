@@ -23,13 +23,18 @@ Eigen::Vector2d DoorStandoff::point(const DoorPassage& passage) const {
   return passage.middle - standoff_m_ * passage.along;
 }
 
-bool DoorStandoff::wants_way() const { return phase_ == Phase::none || phase_ == Phase::approach; }
+bool DoorStandoff::wants_grid() const { return phase_ == Phase::none || phase_ == Phase::approach; }
 
-void DoorStandoff::begin(const DoorPassage& passage, bool sighted, const core::Pose2& pose, double time_s) {
+void DoorStandoff::begin(const DoorPassage& passage, bool sighted, bool in_a_wall, const core::Pose2& pose,
+                         double time_s) {
   door_ = passage;
   found_time_s_ = time_s;
   if (sighted) {
     phase_ = Phase::done;
+    return;
+  }
+  if (!in_a_wall) {
+    give_up(counters_.not_in_a_wall);
     return;
   }
   ++counters_.doors;
@@ -49,14 +54,14 @@ void DoorStandoff::give_up(std::uint64_t& reason) {
   phase_ = Phase::done;
 }
 
-bool DoorStandoff::steer(const DoorPassage& passage, bool sighted, bool way_clear, const core::Pose2& pose,
+bool DoorStandoff::steer(const DoorPassage& passage, bool sighted, const GridAnswers& grid, const core::Pose2& pose,
                          double time_s, core::DriveCommand& command) {
   if (!enabled()) return false;
   if (!passage.known) {
     if (phase_ != Phase::none && (pose.translation() - door_.middle).norm() > kForget_m) reset();
     return false;
   }
-  if (phase_ == Phase::none || !same_door(passage, door_)) begin(passage, sighted, pose, time_s);
+  if (phase_ == Phase::none || !same_door(passage, door_)) begin(passage, sighted, grid.in_a_wall, pose, time_s);
   if (phase_ == Phase::done) return false;
   if (sighted) {
     ++counters_.sighted;
@@ -70,7 +75,7 @@ bool DoorStandoff::steer(const DoorPassage& passage, bool sighted, bool way_clea
   if (phase_ == Phase::approach) {
     const Eigen::Vector2d standoff = point(passage);
     if ((pose.translation() - standoff).norm() > kReached_m) {
-      if (!way_clear) {
+      if (!grid.way_clear) {
         give_up(counters_.way_shut);
         return false;
       }

@@ -646,9 +646,12 @@ void Explorer::stand_off(const GridView& grid, const ExploreInput& input, core::
   if (!standoff_.enabled()) return;
   const DoorPassage& passage = door_axis_.passage();
   const bool sighted = sighting_.holding() && same_door(sighting_.door(), passage);
-  const bool way_clear =
-      passage.known && standoff_.wants_way() && straight_way_clear(grid, input, standoff_.point(passage));
-  standoff_.steer(passage, sighted, way_clear, input.pose, input.time_s, command);
+  DoorStandoff::GridAnswers answers;
+  if (passage.known && standoff_.wants_grid()) {
+    answers.in_a_wall = DoorSighting::in_a_wall(passage, grid);
+    answers.way_clear = straight_way_clear(grid, input, standoff_.point(passage));
+  }
+  standoff_.steer(passage, sighted, answers, input.pose, input.time_s, command);
 }
 
 bool Explorer::straight_way_clear(const GridView& grid, const ExploreInput& input, const Eigen::Vector2d& point) const {

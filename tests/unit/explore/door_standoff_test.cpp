@@ -13,6 +13,10 @@ namespace stereoscout::explore {
 namespace {
 
 constexpr double kTick_s = 0.05;
+// A door in a wall, the straight way to its point clear; the way shut; a gap beside no wall.
+constexpr DoorStandoff::GridAnswers kClear{true, true};
+constexpr DoorStandoff::GridAnswers kShut{true, false};
+constexpr DoorStandoff::GridAnswers kNoWall{false, true};
 
 ExploreParams standoff_params() {
   ExploreParams params = testing::test_params(100, 100);
@@ -39,10 +43,10 @@ void move(core::Pose2& pose, const core::DriveCommand& command) {
 
 // Steers until the standoff lets go (or `seconds` pass); the time it took.
 double stand_off(DoorStandoff& standoff, const DoorPassage& door, core::Pose2& pose, double seconds = 60.0,
-                 bool way_clear = true) {
+                 const DoorStandoff::GridAnswers& grid = kClear) {
   double time_s = 0.0;
   core::DriveCommand command;
-  while (time_s < seconds && standoff.steer(door, false, way_clear, pose, time_s, command)) {
+  while (time_s < seconds && standoff.steer(door, false, grid, pose, time_s, command)) {
     move(pose, command);
     time_s += kTick_s;
   }
@@ -64,7 +68,7 @@ TEST(DoorStandoff, DrivesToThePointOnTheAxisThenFacesTheDoor) {
   EXPECT_EQ(standoff.counters().stood_off, 1U);
   // Done with this door: the follower drives on.
   core::DriveCommand command;
-  EXPECT_FALSE(standoff.steer(door, false, true, pose, took_s + kTick_s, command));
+  EXPECT_FALSE(standoff.steer(door, false, kClear, pose, took_s + kTick_s, command));
 }
 
 // Nearer than the point but with the camera far enough before the door's line: it only turns.
@@ -84,29 +88,37 @@ TEST(DoorStandoff, LeavesADoorTheRobotIsTooNearToSee) {
   DoorStandoff standoff(standoff_params());
   core::Pose2 pose{5.0, 3.6, core::kPi / 2.0};
   core::DriveCommand command;
-  EXPECT_FALSE(standoff.steer(side_door(), false, true, pose, 0.0, command));
+  EXPECT_FALSE(standoff.steer(side_door(), false, kClear, pose, 0.0, command));
   EXPECT_EQ(standoff.counters().too_near, 1U);
   EXPECT_EQ(standoff.counters().stood_off, 0U);
 }
 
-TEST(DoorStandoff, GivesTheDoorUpOnceSightedOrWhenTheWayIsShut) {
+TEST(DoorStandoff, GivesTheDoorUpOnceSightedOrWhenTheWayIsShutAndLeavesGapsBesideNoWall) {
   const DoorPassage door = side_door();
   {
     DoorStandoff standoff(standoff_params());
     core::Pose2 pose{3.6, 4.2, 0.0};
     stand_off(standoff, door, pose, 2.0);
     core::DriveCommand command;
-    EXPECT_FALSE(standoff.steer(door, true, true, pose, 2.0, command));
+    EXPECT_FALSE(standoff.steer(door, true, kClear, pose, 2.0, command));
     EXPECT_EQ(standoff.counters().sighted, 1U);
     // The sighting dropped again, it is the same door: no second standoff.
-    EXPECT_FALSE(standoff.steer(door, false, true, pose, 2.05, command));
+    EXPECT_FALSE(standoff.steer(door, false, kClear, pose, 2.05, command));
   }
   {
     DoorStandoff standoff(standoff_params());
     core::Pose2 pose{3.6, 4.2, 0.0};
     core::DriveCommand command;
-    EXPECT_FALSE(standoff.steer(door, false, false, pose, 0.0, command));
+    EXPECT_FALSE(standoff.steer(door, false, kShut, pose, 0.0, command));
     EXPECT_EQ(standoff.counters().way_shut, 1U);
+  }
+  {
+    DoorStandoff standoff(standoff_params());
+    core::Pose2 pose{3.6, 4.2, 0.0};
+    core::DriveCommand command;
+    EXPECT_FALSE(standoff.steer(door, false, kNoWall, pose, 0.0, command));
+    EXPECT_EQ(standoff.counters().not_in_a_wall, 1U);
+    EXPECT_EQ(standoff.counters().doors, 0U);
   }
 }
 
@@ -116,7 +128,7 @@ TEST(DoorStandoff, GivesTheDoorUpAfterItsTimeLimit) {
   const core::Pose2 pose{3.6, 4.2, 0.0};
   core::DriveCommand command;
   double time_s = 0.0;
-  while (time_s < 60.0 && standoff.steer(side_door(), false, true, pose, time_s, command)) time_s += kTick_s;
+  while (time_s < 60.0 && standoff.steer(side_door(), false, kClear, pose, time_s, command)) time_s += kTick_s;
   EXPECT_NEAR(time_s, DoorStandoff::kGiveUp_s, 2.0 * kTick_s);
   EXPECT_EQ(standoff.counters().timed_out, 1U);
 }
@@ -129,11 +141,11 @@ TEST(DoorStandoff, StandsOffOncePerApproach) {
   core::Pose2 pose{3.6, 4.2, 0.0};
   const double took_s = stand_off(standoff, door, pose);
   core::DriveCommand command;
-  EXPECT_FALSE(standoff.steer(DoorPassage(), false, true, pose, took_s, command));
-  EXPECT_FALSE(standoff.steer(door, false, true, pose, took_s + kTick_s, command));
+  EXPECT_FALSE(standoff.steer(DoorPassage(), false, kClear, pose, took_s, command));
+  EXPECT_FALSE(standoff.steer(door, false, kClear, pose, took_s + kTick_s, command));
   EXPECT_EQ(standoff.counters().doors, 1U);
   const core::Pose2 far{9.0, 4.2, core::kPi};
-  EXPECT_FALSE(standoff.steer(DoorPassage(), false, true, far, took_s + 40.0, command));
+  EXPECT_FALSE(standoff.steer(DoorPassage(), false, kClear, far, took_s + 40.0, command));
   core::Pose2 back{3.6, 4.2, 0.0};
   stand_off(standoff, door, back);
   EXPECT_EQ(standoff.counters().doors, 2U);
@@ -145,7 +157,7 @@ TEST(DoorStandoff, OffByDefault) {
   core::Pose2 pose{3.6, 4.2, 0.0};
   core::DriveCommand command;
   EXPECT_FALSE(standoff.enabled());
-  EXPECT_FALSE(standoff.steer(side_door(), false, true, pose, 0.0, command));
+  EXPECT_FALSE(standoff.steer(side_door(), false, kClear, pose, 0.0, command));
   EXPECT_EQ(standoff.counters().doors, 0U);
 }
 

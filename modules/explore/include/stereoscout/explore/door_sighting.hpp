@@ -105,6 +105,8 @@ class DoorSighting {
   core::Pose2 navigation_pose(const core::Pose2& pose, const core::Pose2& odometry);
 
   bool holding() const { return held_; }
+  // Whether `door` is an opening in a wall in `grid` (kWallCells, kWallCellsOccupied).
+  static bool in_a_wall(const DoorPassage& door, const GridView& grid);
   // The last sighting's offset across the door (map frame, added to the scan's pose), and its
   // door.
   Eigen::Vector2d last_offset() const { return offset_; }
@@ -118,7 +120,6 @@ class DoorSighting {
                DoorGap& gap);
   void release();
   static bool touches_image_edge(int first, int last, int columns);
-  static bool in_a_wall(const DoorPassage& door, const GridView& grid);
   // Whether `column` of `scan` (taken at `pose`) saw past the door's line; its point in `point`.
   static bool sees_past(const core::DepthScan& scan, const core::Pose2& pose, const DoorPassage& door, int column,
                         Eigen::Vector2d& point);

@@ -14,7 +14,8 @@
 // middle, then turns in place to face along the axis: the turn brings an update (and a scan)
 // each degree, and the last ones see the door square on. Then it goes on along the axis. The
 // door is given up, and the robot goes on as without a standoff, once a sighting of it is
-// held, when the straight way to the point is not clear (the caller checks it), when the robot
+// held, when the grid holds no wall beside it (DoorSighting::in_a_wall: a gap between two
+// pieces of furniture is passed without a sighting anyway), when the straight way to the point is not clear (the caller checks it), when the robot
 // stands nearer the door than the point and its camera, turned along the axis, would stand
 // nearer than kMinAhead_m, or kGiveUp_s after the door was first found.
 //
@@ -32,9 +33,10 @@
 namespace stereoscout::explore {
 
 struct DoorStandoffCounters {
-  std::uint64_t doors = 0;      // doors on the plan without a sighting, while on
+  std::uint64_t doors = 0;      // doors (gaps in a wall) on the plan without a sighting, while on
   std::uint64_t stood_off = 0;  // of them: the robot reached the point (or could turn where it stood)
   std::uint64_t sighted = 0;    // of them: a sighting held before the robot faced along the axis
+  std::uint64_t not_in_a_wall = 0;  // left: a gap the grid holds no wall beside (no sighting would be taken)
   std::uint64_t too_near = 0;   // given up: found with the robot too near to turn and see it
   std::uint64_t way_shut = 0;   // given up: the straight way to the point not clear
   std::uint64_t timed_out = 0;  // given up: kGiveUp_s after the door was found
@@ -58,19 +60,24 @@ class DoorStandoff {
   void reset();
   // The point `passage`'s standoff drives to.
   Eigen::Vector2d point(const DoorPassage& passage) const;
-  // Whether steer() needs `way_clear` (it drives to the point, or may begin to).
-  bool wants_way() const;
+  // Whether steer() needs `grid`'s answers (it drives to the point, or may begin to).
+  bool wants_grid() const;
+  // What the caller found in its grid for the door axis's passage.
+  struct GridAnswers {
+    bool in_a_wall = false;  // DoorSighting::in_a_wall(passage)
+    bool way_clear = false;  // the disc can drive straight from the robot to point(passage)
+  };
   // Whether the robot, at `pose` with the door axis's `passage` (known or not) and `sighted`
   // (a sighting of that door is held), stands off for it now: then `command` is the drive
-  // command. `way_clear`: the disc can drive straight from the robot to point(passage).
-  bool steer(const DoorPassage& passage, bool sighted, bool way_clear, const core::Pose2& pose, double time_s,
-             core::DriveCommand& command);
+  // command.
+  bool steer(const DoorPassage& passage, bool sighted, const GridAnswers& grid, const core::Pose2& pose,
+             double time_s, core::DriveCommand& command);
   const DoorStandoffCounters& counters() const { return counters_; }
 
  private:
   enum class Phase : std::uint8_t { none, approach, face, done };
 
-  void begin(const DoorPassage& passage, bool sighted, const core::Pose2& pose, double time_s);
+  void begin(const DoorPassage& passage, bool sighted, bool in_a_wall, const core::Pose2& pose, double time_s);
   void give_up(std::uint64_t& reason);
 
   ExploreParams params_;
