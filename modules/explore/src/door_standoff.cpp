@@ -39,7 +39,9 @@ void DoorStandoff::begin(const DoorPassage& passage, bool sighted, bool in_a_wal
   }
   ++counters_.doors;
   const double ahead = passage.along.dot(pose.translation() - passage.middle);
-  if (ahead <= -(standoff_m_ - kReached_m)) {
+  // A robot that passed the door and turns round to pass it again faces the point.
+  const bool facing_away = passage.along.dot(Eigen::Vector2d(std::cos(pose.theta), std::sin(pose.theta))) < 0.0;
+  if (ahead <= -(standoff_m_ - kReached_m) || facing_away) {
     phase_ = Phase::approach;
   } else if (ahead + params_.camera_forward_m < -DoorSighting::kMinAhead_m) {
     ++counters_.stood_off;

@@ -82,11 +82,23 @@ TEST(DoorStandoff, TurnsWhereItStandsWhenThatIsFarEnoughBeforeTheDoor) {
   EXPECT_EQ(standoff.counters().stood_off, 1U);
 }
 
-// A robot that turned round just past the door, its camera nearer than 0.7 m to the line when
-// facing it, is left to the follower.
+// A robot just past the door, facing away from it, with a new plan back through it: on to the
+// point, then half a turn.
+TEST(DoorStandoff, ARobotFacingAwayFromTheDoorDrivesOnToThePointBeforeTurning) {
+  DoorStandoff standoff(standoff_params());
+  core::Pose2 pose{5.0, 3.55, core::kPi / 2.0};
+  stand_off(standoff, side_door(), pose);
+  EXPECT_NEAR(pose.x, 5.0, DoorStandoff::kReached_m + 0.01);
+  EXPECT_NEAR(pose.y, 4.05, DoorStandoff::kReached_m + 0.01);
+  EXPECT_NEAR(pose.theta, -core::kPi / 2.0, DoorStandoff::kFacing_rad);
+  EXPECT_EQ(standoff.counters().stood_off, 1U);
+}
+
+// A robot that has turned round just past the door, facing it with its camera nearer than
+// 0.7 m to the line, is left to the follower.
 TEST(DoorStandoff, LeavesADoorTheRobotIsTooNearToSee) {
   DoorStandoff standoff(standoff_params());
-  core::Pose2 pose{5.0, 3.6, core::kPi / 2.0};
+  core::Pose2 pose{5.0, 3.6, -core::kPi / 2.0};
   core::DriveCommand command;
   EXPECT_FALSE(standoff.steer(side_door(), false, kClear, pose, 0.0, command));
   EXPECT_EQ(standoff.counters().too_near, 1U);

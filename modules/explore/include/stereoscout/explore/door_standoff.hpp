@@ -11,7 +11,9 @@
 //
 // When the plan passes a door (the door axis's passage) that no sighting is held for, the
 // robot first drives to the standoff point on the door's axis, door_standoff_m before its
-// middle, then turns in place to face along the axis: the turn brings an update (and a scan)
+// middle (a robot that passed the door and now turns round to pass it again, facing away
+// from it, drives on to the point rather than turn round nearer the door), then turns in
+// place to face along the axis: the turn brings an update (and a scan)
 // each degree, and the last ones see the door square on. Then it goes on along the axis. The
 // door is given up, and the robot goes on as without a standoff, once a sighting of it is
 // held, when the grid holds no wall beside it (DoorSighting::in_a_wall: a gap between two
