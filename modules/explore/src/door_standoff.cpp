@@ -28,7 +28,7 @@ bool DoorStandoff::wants_grid() const { return phase_ == Phase::none || phase_ =
 void DoorStandoff::begin(const DoorPassage& passage, bool sighted, bool in_a_wall, const core::Pose2& pose,
                          double time_s) {
   door_ = passage;
-  found_time_s_ = time_s;
+  phase_start_s_ = time_s;
   if (sighted) {
     phase_ = Phase::done;
     return;
@@ -51,6 +51,11 @@ void DoorStandoff::begin(const DoorPassage& passage, bool sighted, bool in_a_wal
   }
 }
 
+// The approach's limit, or twice the time a half turn takes.
+double DoorStandoff::phase_limit_s() const {
+  return phase_ == Phase::approach ? kApproachLimit_s : 2.0 * core::kPi / params_.max_turn_rate_rad_s;
+}
+
 void DoorStandoff::give_up(std::uint64_t& reason) {
   ++reason;
   phase_ = Phase::done;
@@ -70,7 +75,7 @@ bool DoorStandoff::steer(const DoorPassage& passage, bool sighted, const GridAns
     phase_ = Phase::done;
     return false;
   }
-  if (time_s - found_time_s_ > kGiveUp_s) {
+  if (time_s - phase_start_s_ > phase_limit_s()) {
     give_up(counters_.timed_out);
     return false;
   }
@@ -86,6 +91,7 @@ bool DoorStandoff::steer(const DoorPassage& passage, bool sighted, const GridAns
     }
     ++counters_.stood_off;
     phase_ = Phase::face;
+    phase_start_s_ = time_s;
   }
   const double error_rad = core::wrap_angle(std::atan2(passage.along.y(), passage.along.x()) - pose.theta);
   if (std::abs(error_rad) < kFacing_rad) {

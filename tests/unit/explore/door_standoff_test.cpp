@@ -60,7 +60,7 @@ TEST(DoorStandoff, DrivesToThePointOnTheAxisThenFacesTheDoor) {
   const DoorPassage door = side_door();
   core::Pose2 pose{3.6, 4.2, 0.0};
   const double took_s = stand_off(standoff, door, pose);
-  EXPECT_LT(took_s, DoorStandoff::kGiveUp_s);
+  EXPECT_LT(took_s, DoorStandoff::kApproachLimit_s);
   EXPECT_NEAR(pose.x, 5.0, DoorStandoff::kReached_m + 0.01);
   EXPECT_NEAR(pose.y, 4.05, DoorStandoff::kReached_m + 0.01);
   EXPECT_NEAR(pose.theta, -core::kPi / 2.0, DoorStandoff::kFacing_rad);
@@ -141,7 +141,7 @@ TEST(DoorStandoff, GivesTheDoorUpAfterItsTimeLimit) {
   core::DriveCommand command;
   double time_s = 0.0;
   while (time_s < 60.0 && standoff.steer(side_door(), false, kClear, pose, time_s, command)) time_s += kTick_s;
-  EXPECT_NEAR(time_s, DoorStandoff::kGiveUp_s, 2.0 * kTick_s);
+  EXPECT_NEAR(time_s, DoorStandoff::kApproachLimit_s, 2.0 * kTick_s);
   EXPECT_EQ(standoff.counters().timed_out, 1U);
 }
 

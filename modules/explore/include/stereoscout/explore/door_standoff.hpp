@@ -17,9 +17,10 @@
 // each degree, and the last ones see the door square on. Then it goes on along the axis. The
 // door is given up, and the robot goes on as without a standoff, once a sighting of it is
 // held, when the grid holds no wall beside it (DoorSighting::in_a_wall: a gap between two
-// pieces of furniture is passed without a sighting anyway), when the straight way to the point is not clear (the caller checks it), when the robot
-// stands nearer the door than the point and its camera, turned along the axis, would stand
-// nearer than kMinAhead_m, or kGiveUp_s after the door was first found.
+// pieces of furniture is passed without a sighting anyway), when the straight way to the
+// point is not clear (the caller checks it), when the robot stands nearer the door than the
+// point, facing it, and its camera would stand nearer than kMinAhead_m, or when the approach
+// takes longer than kApproachLimit_s or the turn twice the time a half turn needs.
 //
 // Fixed-size state; steer() allocates nothing.
 
@@ -41,7 +42,7 @@ struct DoorStandoffCounters {
   std::uint64_t not_in_a_wall = 0;  // left: a gap the grid holds no wall beside (no sighting would be taken)
   std::uint64_t too_near = 0;   // given up: found with the robot too near to turn and see it
   std::uint64_t way_shut = 0;   // given up: the straight way to the point not clear
-  std::uint64_t timed_out = 0;  // given up: kGiveUp_s after the door was found
+  std::uint64_t timed_out = 0;  // given up: the approach or the turn took too long
 };
 
 class DoorStandoff {
@@ -51,10 +52,10 @@ class DoorStandoff {
   static constexpr double kReached_m = 0.05;
   // Facing along the axis within this angle (the turn's updates come every degree).
   static constexpr double kFacing_rad = 0.03;
-  // A door not stood off for this long after it was found is given up: something the grid
-  // does not hold keeps the robot from the point, and the stall and stuck rules act on the
-  // plan's progress, which the standoff does not make.
-  static constexpr double kGiveUp_s = 30.0;
+  // An approach that takes longer than this is given up: something the grid does not hold
+  // keeps the robot from the point, and the stall and stuck rules act on the plan's progress,
+  // which the standoff does not make. At 0.12 m/s it covers 2 m with two quarter turns.
+  static constexpr double kApproachLimit_s = 30.0;
 
   explicit DoorStandoff(const ExploreParams& params);
 
@@ -81,12 +82,13 @@ class DoorStandoff {
 
   void begin(const DoorPassage& passage, bool sighted, bool in_a_wall, const core::Pose2& pose, double time_s);
   void give_up(std::uint64_t& reason);
+  double phase_limit_s() const;
 
   ExploreParams params_;
   double standoff_m_ = 0.0;
   DoorPassage door_;
   Phase phase_ = Phase::none;
-  double found_time_s_ = 0.0;
+  double phase_start_s_ = 0.0;
   DoorStandoffCounters counters_;
 };
 
