@@ -25,14 +25,9 @@ Eigen::Vector2d DoorStandoff::point(const DoorPassage& passage) const {
 
 bool DoorStandoff::wants_grid() const { return phase_ == Phase::none || phase_ == Phase::approach; }
 
-void DoorStandoff::begin(const DoorPassage& passage, bool sighted, bool in_a_wall, const core::Pose2& pose,
-                         double time_s) {
+void DoorStandoff::begin(const DoorPassage& passage, bool in_a_wall, const core::Pose2& pose, double time_s) {
   door_ = passage;
   phase_start_s_ = time_s;
-  if (sighted) {
-    phase_ = Phase::done;
-    return;
-  }
   if (!in_a_wall) {
     give_up(counters_.not_in_a_wall);
     return;
@@ -68,13 +63,8 @@ bool DoorStandoff::steer(const DoorPassage& passage, bool sighted, const GridAns
     if (phase_ != Phase::none && (pose.translation() - door_.middle).norm() > kForget_m) reset();
     return false;
   }
-  if (phase_ == Phase::none || !same_door(passage, door_)) begin(passage, sighted, grid.in_a_wall, pose, time_s);
+  if (phase_ == Phase::none || !same_door(passage, door_)) begin(passage, grid.in_a_wall, pose, time_s);
   if (phase_ == Phase::done) return false;
-  if (sighted) {
-    ++counters_.sighted;
-    phase_ = Phase::done;
-    return false;
-  }
   if (time_s - phase_start_s_ > phase_limit_s()) {
     give_up(counters_.timed_out);
     return false;
@@ -95,6 +85,7 @@ bool DoorStandoff::steer(const DoorPassage& passage, bool sighted, const GridAns
   }
   const double error_rad = core::wrap_angle(std::atan2(passage.along.y(), passage.along.x()) - pose.theta);
   if (std::abs(error_rad) < kFacing_rad) {
+    if (sighted) ++counters_.sighted;
     phase_ = Phase::done;
     return false;
   }

@@ -27,6 +27,7 @@ const char* to_string(ExploreEventKind kind) {
     case ExploreEventKind::return_failed: return "return_failed";
     case ExploreEventKind::returned: return "returned";
     case ExploreEventKind::door_sighted: return "door_sighted";
+    case ExploreEventKind::door_standoff: return "door_standoff";
   }
   return "?";
 }

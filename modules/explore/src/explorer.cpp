@@ -651,7 +651,11 @@ void Explorer::stand_off(const GridView& grid, const ExploreInput& input, core::
     answers.in_a_wall = DoorSighting::in_a_wall(passage, grid);
     answers.way_clear = straight_way_clear(grid, input, standoff_.point(passage));
   }
+  const std::uint64_t stood_off = standoff_.counters().stood_off;
   standoff_.steer(passage, sighted, answers, input.pose, input.time_s, command);
+  if (standoff_.counters().stood_off > stood_off) {
+    note(ExploreEventKind::door_standoff, input, passage.middle, sighted ? 1.0 : 0.0);
+  }
 }
 
 bool Explorer::straight_way_clear(const GridView& grid, const ExploreInput& input, const Eigen::Vector2d& point) const {

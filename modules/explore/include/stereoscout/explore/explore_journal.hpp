@@ -42,6 +42,7 @@ enum class ExploreEventKind : std::uint8_t {
   return_failed,     // no way back to the start, or no progress on it
   returned,          // back at the start
   door_sighted,      // a scan saw the door on the plan: the pose navigated by is corrected across it
+  door_standoff,     // at the door's standoff point (explore.door_standoff_m): turning to face the door
 };
 const char* to_string(ExploreEventKind kind);
 
