@@ -246,57 +246,89 @@ struct OffsetDoorScene {
   }
 };
 
-double jamb_clearance_m(const Eigen::Vector2d& robot, double radius_m) {
+// A 0.9 m door in a thin wall (0.1 m deep) of a test scene, passed along `along`, and the robot
+// that drives through it with its estimate `error` off all along, the odometry exact.
+struct DoorDrive {
+  const testing::TestGrid& grid;
+  Eigen::Vector2d middle;
+  Eigen::Vector2d along;
+  Eigen::Vector2d error;
+  // Through once the robot's centre is this far past the door's line.
+  double past_m = 0.0;
+};
+
+// Least distance between the disc at `robot` and a jamb of `drive`'s door (a point at wall
+// height across the wall's depth).
+double jamb_clearance_m(const DoorDrive& drive, const Eigen::Vector2d& robot, double radius_m) {
+  const Eigen::Vector2d across(-drive.along.y(), drive.along.x());
+  const double along = std::max(0.0, std::abs((robot - drive.middle).dot(drive.along)) - 0.05);
   double least = 1e9;
-  for (double jamb_y : {2.6, 3.5}) {
-    const double along = std::max(0.0, std::abs(robot.x() - 3.05) - 0.05);
-    least = std::min(least, std::hypot(along, robot.y() - jamb_y) - radius_m);
+  for (double side : {-0.45, 0.45}) {
+    least = std::min(least, std::hypot((robot - drive.middle).dot(across) - side, along) - radius_m);
   }
   return least;
+}
+
+struct Passage {
+  double clearance_m = 1e9;
+  bool through = false;
+};
+
+// Drives the kinematic robot from `truth` by the explorer's commands at 20 Hz until it is
+// through the door (or 200 s pass), with an update, and a scan of the door, each 0.07 m or
+// degree of motion, as the stack makes them.
+Passage drive_through_door(Explorer& explorer, const DoorDrive& drive, core::Pose2 truth, double radius_m) {
+  core::DepthScan scan;
+  SeenObstacles seen;
+  Passage passage;
+  core::Pose2 last_scan_pose = truth;
+  const auto past_m = [&] { return (truth.translation() - drive.middle).dot(drive.along); };
+  for (double time_s = 0.0; time_s < 200.0 && past_m() < drive.past_m; time_s += 0.05) {
+    ExploreInput input;
+    input.time_s = time_s;
+    input.pose = core::Pose2{truth.x + drive.error.x(), truth.y + drive.error.y(), truth.theta};
+    input.odometry = truth;
+    input.grid = drive.grid.view();
+    const bool moved = (truth.translation() - last_scan_pose.translation()).norm() >= 0.07 ||
+                       std::abs(core::wrap_angle(truth.theta - last_scan_pose.theta)) >= core::degrees_to_radians(1.0);
+    input.grid_updated = time_s == 0.0 || moved;
+    if (input.grid_updated) {
+      last_scan_pose = truth;
+      scan = scan_of_door(truth, drive.middle, 0.9, drive.along);
+      seen = seen_at(scan, input.pose, truth, time_s);
+    }
+    input.seen = seen;
+    const core::DriveCommand command = explorer.step(input).drive;
+    truth.x += command.linear_mps * 0.05 * std::cos(truth.theta);
+    truth.y += command.linear_mps * 0.05 * std::sin(truth.theta);
+    truth.theta = core::wrap_angle(truth.theta + command.angular_rad_s * 0.05);
+    passage.clearance_m = std::min(passage.clearance_m, jamb_clearance_m(drive, truth.translation(), radius_m));
+  }
+  passage.through = past_m() >= drive.past_m;
+  return passage;
+}
+
+ExploreParams closed_loop_params(int width, int height) {
+  ExploreParams params = testing::test_params(width, height);
+  params.explore.pan_at_goal = false;
+  params.explore.return_to_start = false;
+  return params;
 }
 
 // Drives the kinematic robot by the explorer's commands until it is through the door; the least
 // clearance between its true disc and a jamb.
 double least_clearance_through_offset_door(double sighting_range_m) {
   OffsetDoorScene scene;
-  ExploreParams params = testing::test_params(100, 60);
-  params.explore.pan_at_goal = false;
-  params.explore.return_to_start = false;
+  ExploreParams params = closed_loop_params(100, 60);
   params.explore.door_sighting_range_m = sighting_range_m;
   Explorer explorer(params);
-  const Eigen::Vector2d error(0.0, 0.12);
-  core::Pose2 truth{1.2, 3.05, 0.0};
-  core::DepthScan scan;
-  SeenObstacles seen;
-  double least = 1e9;
-  double next_scan_s = 0.0;
-  for (double time_s = 0.0; time_s < 120.0 && truth.x < 4.0; time_s += 0.05) {
-    ExploreInput input;
-    input.time_s = time_s;
-    input.pose = core::Pose2{truth.x + error.x(), truth.y + error.y(), truth.theta};
-    input.odometry = truth;
-    input.grid = scene.grid.view();
-    input.grid_updated = time_s >= next_scan_s;
-    if (input.grid_updated) {
-      scan = scan_of_door(truth, {3.05, 3.05}, 0.9, {1.0, 0.0});
-      seen.scan = &scan;
-      seen.time_s = time_s;
-      seen.pose = input.pose;
-      seen.odometry = truth;
-      next_scan_s = time_s + 0.5;
-    }
-    input.seen = seen;
-    const core::DriveCommand drive = explorer.step(input).drive;
-    truth.x += drive.linear_mps * 0.05 * std::cos(truth.theta);
-    truth.y += drive.linear_mps * 0.05 * std::sin(truth.theta);
-    truth.theta = core::wrap_angle(truth.theta + drive.angular_rad_s * 0.05);
-    least = std::min(least, jamb_clearance_m(truth.translation(), params.robot_radius_m));
-  }
-  EXPECT_GE(truth.x, 4.0) << "not through the door";
+  const DoorDrive drive{scene.grid, {3.05, 3.05}, {1.0, 0.0}, {0.0, 0.12}, 0.95};
+  const Passage passage = drive_through_door(explorer, drive, core::Pose2{1.2, 3.05, 0.0}, params.robot_radius_m);
+  EXPECT_TRUE(passage.through) << "not through the door";
   if (sighting_range_m > 0.0) {
     EXPECT_GT(explorer.door_sighting().counters().sightings, 0U);
   }
-  return least;
+  return passage.clearance_m;
 }
 
 // With the estimate 0.12 m off across a 0.9 m door, the robot centred on the door in its belief
@@ -325,70 +357,27 @@ struct SideDoorScene {
   }
 };
 
-// The disc has cleared the jambs (the safe distance past the door's line).
-constexpr double kThroughSideDoorY = 2.5;
-
-double side_jamb_clearance_m(const Eigen::Vector2d& robot, double radius_m) {
-  double least = 1e9;
-  for (double jamb_x : {4.55, 5.45}) {
-    const double along = std::max(0.0, std::abs(robot.y() - 3.05) - 0.05);
-    least = std::min(least, std::hypot(robot.x() - jamb_x, along) - radius_m);
-  }
-  return least;
-}
-
 struct SideDoorPassage {
-  double clearance_m = 1e9;
-  bool through = false;
+  Passage passage;
   DoorStandoffCounters standoff;
   std::uint64_t sightings = 0;
 };
 
-// Drives the kinematic robot by the explorer's commands until it is through the door.
 SideDoorPassage through_side_door(double standoff_m) {
   SideDoorScene scene;
-  ExploreParams params = testing::test_params(100, 60);
-  params.explore.pan_at_goal = false;
-  params.explore.return_to_start = false;
+  ExploreParams params = closed_loop_params(100, 60);
   params.explore.door_sighting_range_m = 1.4;
   params.explore.door_axis_before_m = 1.4;
   params.explore.door_axis_all_gaps = true;
   params.explore.door_standoff_m = standoff_m;
   Explorer explorer(params);
-  const Eigen::Vector2d error(0.12, 0.0);
-  core::Pose2 truth{2.0, 4.2, 0.0};
-  core::DepthScan scan;
-  SeenObstacles seen;
-  SideDoorPassage passage;
-  core::Pose2 last_scan_pose = truth;
-  bool first = true;
-  for (double time_s = 0.0; time_s < 200.0 && truth.y > kThroughSideDoorY; time_s += 0.05) {
-    ExploreInput input;
-    input.time_s = time_s;
-    input.pose = core::Pose2{truth.x + error.x(), truth.y + error.y(), truth.theta};
-    input.odometry = truth;
-    input.grid = scene.grid.view();
-    // An update (and its scan) each 0.07 m or degree of motion, as the stack makes them.
-    const bool moved = (truth.translation() - last_scan_pose.translation()).norm() >= 0.07 ||
-                       std::abs(core::wrap_angle(truth.theta - last_scan_pose.theta)) >= core::degrees_to_radians(1.0);
-    input.grid_updated = first || moved;
-    if (input.grid_updated) {
-      first = false;
-      last_scan_pose = truth;
-      scan = scan_of_door(truth, {5.0, 3.05}, 0.9, {0.0, -1.0});
-      seen = seen_at(scan, input.pose, truth, time_s);
-    }
-    input.seen = seen;
-    const core::DriveCommand drive = explorer.step(input).drive;
-    truth.x += drive.linear_mps * 0.05 * std::cos(truth.theta);
-    truth.y += drive.linear_mps * 0.05 * std::sin(truth.theta);
-    truth.theta = core::wrap_angle(truth.theta + drive.angular_rad_s * 0.05);
-    passage.clearance_m = std::min(passage.clearance_m, side_jamb_clearance_m(truth.translation(), params.robot_radius_m));
-  }
-  passage.through = truth.y <= kThroughSideDoorY;
-  passage.standoff = explorer.door_standoff().counters();
-  passage.sightings = explorer.door_sighting().counters().sightings;
-  return passage;
+  // Through once the disc has cleared the jambs (the safe distance past the door's line).
+  const DoorDrive drive{scene.grid, {5.0, 3.05}, {0.0, -1.0}, {0.12, 0.0}, 0.55};
+  SideDoorPassage result;
+  result.passage = drive_through_door(explorer, drive, core::Pose2{2.0, 4.2, 0.0}, params.robot_radius_m);
+  result.standoff = explorer.door_standoff().counters();
+  result.sightings = explorer.door_sighting().counters().sightings;
+  return result;
 }
 
 // From the corridor the door is seen only obliquely: the robot turns into it with the pose
@@ -399,14 +388,14 @@ TEST(Explorer, StandingOffBeforeASideDoorLetsTheSightingKeepTheRobotClear) {
   const SideDoorPassage square = through_side_door(1.0);
   std::printf("side door, pose 0.12 m off: least jamb clearance %.3f m with %llu sightings; standing off %.3f m "
               "with %llu\n",
-              oblique.clearance_m, static_cast<unsigned long long>(oblique.sightings), square.clearance_m,
+              oblique.passage.clearance_m, static_cast<unsigned long long>(oblique.sightings), square.passage.clearance_m,
               static_cast<unsigned long long>(square.sightings));
-  EXPECT_TRUE(square.through);
+  EXPECT_TRUE(square.passage.through);
   EXPECT_EQ(square.standoff.doors, 1U);
   EXPECT_EQ(square.standoff.stood_off, 1U);
   EXPECT_GT(square.sightings, 0U);
-  EXPECT_GT(square.clearance_m, 0.07);
-  EXPECT_LT(oblique.clearance_m, 0.0);
+  EXPECT_GT(square.passage.clearance_m, 0.07);
+  EXPECT_LT(oblique.passage.clearance_m, 0.0);
 }
 
 }  // namespace
