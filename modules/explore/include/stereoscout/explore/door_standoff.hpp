@@ -24,6 +24,10 @@
 // point, facing it, and its camera would stand nearer than kMinAhead_m, or when the approach
 // takes longer than kApproachLimit_s or the turn twice the time a half turn needs.
 //
+// Off by default: over windows of five office seeds it acted at only 13 door passages, because
+// most doors failed the wall test (the office's blank walls beside them are not in the grid),
+// and it did not lower the contacts (docs/results.md, "a door standoff, tried").
+//
 // Fixed-size state; steer() allocates nothing.
 
 #include <cstdint>
