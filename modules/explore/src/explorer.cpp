@@ -649,7 +649,10 @@ void Explorer::stand_off(const GridView& grid, const ExploreInput& input, core::
   DoorStandoff::GridAnswers answers;
   if (passage.known && standoff_.wants_grid()) {
     answers.in_a_wall = DoorSighting::in_a_wall(passage, grid);
-    answers.way_clear = straight_way_clear(grid, input, standoff_.point(passage));
+    const Eigen::Vector2d to_point = standoff_.point(passage) - position_of(input.pose);
+    const double length_m = to_point.norm();
+    answers.way_clear =
+        length_m == 0.0 || !straight_move_blocked(grid, input, to_point / length_m, 0.0, length_m, false);
   }
   const std::uint64_t stood_off = standoff_.counters().stood_off;
   standoff_.steer(passage, sighted, answers, input.pose, input.time_s, command);
@@ -658,16 +661,6 @@ void Explorer::stand_off(const GridView& grid, const ExploreInput& input, core::
   }
 }
 
-bool Explorer::straight_way_clear(const GridView& grid, const ExploreInput& input, const Eigen::Vector2d& point) const {
-  const Eigen::Vector2d robot = position_of(input.pose);
-  const double length_m = (point - robot).norm();
-  const double step_m = kBackOffCheckStep_cells * grid.resolution_m;
-  for (double along_m = step_m; along_m < length_m + step_m; along_m += step_m) {
-    const Eigen::Vector2d centre = robot + std::min(along_m, length_m) / std::max(length_m, 1e-9) * (point - robot);
-    if (grid_blocks_disc(grid, centre, robot, input.time_s)) return false;
-  }
-  return true;
-}
 
 // Pure pursuit cuts the plan's corners; beside an obstacle the cut can touch it where the plan
 // itself keeps clear (A* checks the disc on the plan's cells only). Before calling the way
@@ -743,17 +736,27 @@ void Explorer::begin_back_off(const ExploreInput& input, ExploreOutput& output) 
 
 // True when the disc, backed straight off along heading_rad from where the robot stands,
 // touches something in the planning grid (or the latest scan) anywhere from kAheadCheck_m to
-// reach_m behind (every kBackOffCheckStep_cells, and at reach_m): kAheadCheck_m is each
-// tick's check, and kAheadCheck_m + a distance covers the checks of a back-off that far.
+// reach_m behind: kAheadCheck_m is each tick's check, and kAheadCheck_m + a distance covers
+// the checks of a back-off that far.
 bool Explorer::back_off_blocked(const ExploreInput& input, double heading_rad, double reach_m) const {
-  const Eigen::Vector2d robot = position_of(input.pose);
   const GridView& grid = planning_on_copy_ ? planning_grid_ : input.grid;
-  const Eigen::Vector2d back = -unit_towards(heading_rad);
+  return straight_move_blocked(grid, input, -unit_towards(heading_rad), kAheadCheck_m, reach_m, true);
+}
+
+// True when the disc, moved straight from where the robot stands along `direction` (a unit
+// vector), touches an occupied cell of `grid` (with `scan_too`, or what the scan guard holds in
+// the latest scan) anywhere from `from_m` to `to_m` (every kBackOffCheckStep_cells, and at to_m).
+bool Explorer::straight_move_blocked(const GridView& grid, const ExploreInput& input, const Eigen::Vector2d& direction,
+                                     double from_m, double to_m, bool scan_too) const {
+  const Eigen::Vector2d robot = position_of(input.pose);
   const double step_m = kBackOffCheckStep_cells * grid.resolution_m;
-  for (double behind_m = kAheadCheck_m;; behind_m += step_m) {
-    behind_m = std::min(behind_m, reach_m);
-    if (disc_blocked(grid, robot + behind_m * back, robot, input) != Blocked::no) return true;
-    if (behind_m >= reach_m) return false;
+  for (double along_m = from_m;; along_m += step_m) {
+    along_m = std::min(along_m, to_m);
+    const Eigen::Vector2d centre = robot + along_m * direction;
+    const bool blocked = scan_too ? disc_blocked(grid, centre, robot, input) != Blocked::no
+                                  : grid_blocks_disc(grid, centre, robot, input.time_s);
+    if (blocked) return true;
+    if (along_m >= to_m) return false;
   }
 }
 

@@ -172,6 +172,8 @@ class Explorer {
   void hold_for_scan(const ExploreInput& input);
   void begin_back_off(const ExploreInput& input, ExploreOutput& output);
   bool back_off_blocked(const ExploreInput& input, double heading_rad, double reach_m) const;
+  bool straight_move_blocked(const GridView& grid, const ExploreInput& input, const Eigen::Vector2d& direction,
+                             double from_m, double to_m, bool scan_too) const;
   double least_back_off_reach_m() const;
   void choose_back_off_heading(const ExploreInput& input);
   bool back_off_step(const ExploreInput& input, ExploreOutput& output);
@@ -180,8 +182,6 @@ class Explorer {
   bool turn_to_face_plan(const GridView& grid, const ExploreInput& input, ExploreOutput& output);
   // The door standoff's command in place of `command` while it stands off (door_standoff.hpp).
   void stand_off(const GridView& grid, const ExploreInput& input, core::DriveCommand& command);
-  // Whether the disc can drive straight from the robot to `point` (the planning grid).
-  bool straight_way_clear(const GridView& grid, const ExploreInput& input, const Eigen::Vector2d& point) const;
   Blocked disc_blocked(const GridView& grid, const Eigen::Vector2d& centre, const Eigen::Vector2d& robot,
                        const ExploreInput& input) const;
   bool grid_blocks_disc(const GridView& grid, const Eigen::Vector2d& centre, const Eigen::Vector2d& robot,
