@@ -59,7 +59,7 @@ StereoRenderer::StereoRenderer(const World& world, const core::CameraConfig& cam
       camera_(camera),
       sim_(sim),
       noise_seed_(noise_seed),
-      textures_(world.texture_seed),
+      textures_(world),
       height_m_(camera.mount_height_m) {
   // Callers check the config with check_camera_supported() and report it; reaching here with
   // a tilted camera is a programming error.
@@ -268,19 +268,17 @@ void StereoRenderer::fill_vertical(const Hit& hit, std::uint8_t* pixels, float* 
   const int r1 = std::min(last_row, static_cast<int>(std::floor(cy + f * (height_m_ - hit.z_min) / z_depth)));
   if (r1 < r0) return;
   const Surface& surface = *hit.surface;
-  const TextureBank::Level& level =
-      textures_.level(surface.texture, TextureBank::level_for_footprint(z_depth / f));
-  const int mask = (1 << level.size_log2) - 1;
-  const int iu = static_cast<int>((hit.texture_u_m + surface.texture_offset_u_m + 4096.0) * level.texels_per_m) & mask;
-  const std::uint8_t* texels = level.texels + (iu << level.size_log2);
+  const int level_index = TextureBank::level_for_footprint(z_depth / f);
+  const TextureBank::Level& level = textures_.level(surface.texture, level_index);
+  const int iu = TextureBank::texel_coordinate(level_index, hit.texture_u_m + surface.texture_offset_u_m);
   const Shading shading(surface, hit.gain, static_cast<float>(sim_.exposure));
   const double v_per_row = -z_depth / f;  // height change per image row
   const double v_start = height_m_ - (r0 - cy) * z_depth / f + surface.texture_offset_v_m + 4096.0;
   const auto depth_value = static_cast<float>(z_depth);
   for (int r = r0; r <= r1; ++r) {
     if (row_done_[static_cast<std::size_t>(r)] != 0) continue;
-    const int iv = static_cast<int>((v_start + (r - r0) * v_per_row) * level.texels_per_m) & mask;
-    pixels[r] = shading(texels[iv]);
+    const int iv = static_cast<int>((v_start + (r - r0) * v_per_row) * level.texels_per_m);
+    pixels[r] = shading(textures_.texel(surface.texture, level_index, iu, iv));
     depth[r] = depth_value;
     row_done_[static_cast<std::size_t>(r)] = 1;
   }
@@ -307,8 +305,8 @@ void StereoRenderer::fill_horizontal(float plane_z, float from_depth, float to_d
     const Eigen::Vector2d point = center + z_depth * direction;
     // Seen at a slant, a pixel covers Z/f across and Z^2/(f h) along the ray; use their mean.
     const double footprint = z_depth / f * std::sqrt(std::max(1.0, z_depth / std::abs(drop)));
-    const TextureBank::Level& level = textures_.level(surface.texture, TextureBank::level_for_footprint(footprint));
-    const std::uint8_t texel = TextureBank::sample(level, point.x() + surface.texture_offset_u_m, point.y() + surface.texture_offset_v_m);
+    const std::uint8_t texel = textures_.sample(surface.texture, TextureBank::level_for_footprint(footprint),
+                                                point.x() + surface.texture_offset_u_m, point.y() + surface.texture_offset_v_m);
     pixels[r] = shading(texel);
     depth[r] = static_cast<float>(z_depth);
     row_done_[static_cast<std::size_t>(r)] = 1;
@@ -344,17 +342,17 @@ void StereoRenderer::fill_floor_and_ceiling(const Eigen::Vector2d& center, const
     if (floor_depth > 0.0F) {
       const Eigen::Vector2d point = center + static_cast<double>(floor_depth) * direction;
       const FloorLook& look = floor_looks_[raster_look_[raster_index(point.x(), point.y())]];
-      const TextureBank::Level& level = textures_.level(look.surface.texture, floor_row_level_[r]);
-      const std::uint8_t texel =
-          TextureBank::sample(level, point.x() + look.surface.texture_offset_u_m, point.y() + look.surface.texture_offset_v_m);
+      const std::uint8_t texel = textures_.sample(look.surface.texture, floor_row_level_[r],
+                                                  point.x() + look.surface.texture_offset_u_m,
+                                                  point.y() + look.surface.texture_offset_v_m);
       const float value = look.scale * static_cast<float>(texel) + look.offset + 0.5F;
       pixels[r] = static_cast<std::uint8_t>(std::clamp(value, 0.0F, 255.0F));
       depth[r] = floor_depth;
     } else if (ceiling_row_depth_[r] > 0.0F) {
       const Eigen::Vector2d point = center + static_cast<double>(ceiling_row_depth_[r]) * direction;
-      const TextureBank::Level& level = textures_.level(ceiling.texture, ceiling_row_level_[r]);
-      pixels[r] = ceiling_shading(
-          TextureBank::sample(level, point.x() + ceiling.texture_offset_u_m, point.y() + ceiling.texture_offset_v_m));
+      pixels[r] = ceiling_shading(textures_.sample(ceiling.texture, ceiling_row_level_[r],
+                                                   point.x() + ceiling.texture_offset_u_m,
+                                                   point.y() + ceiling.texture_offset_v_m));
       depth[r] = ceiling_row_depth_[r];
     } else {  // exactly on the horizon: nothing there
       pixels[r] = 0;

@@ -234,44 +234,73 @@ Canvas make_texture(Texture texture, core::RandomStream& random) {
   return Canvas();
 }
 
+// The textures a surface of `world` shows.
+std::array<bool, kTextureCount> textures_shown(const World& world) {
+  std::array<bool, kTextureCount> shown{};
+  const auto show = [&](const Surface& surface) { shown[static_cast<std::size_t>(surface.texture)] = true; };
+  show(world.floor);
+  show(world.ceiling);
+  for (const WallPiece& wall : world.walls) show(wall.surface);
+  for (const Prism& prism : world.prisms) show(prism.surface);
+  for (const Cylinder& cylinder : world.cylinders) show(cylinder.surface);
+  for (const Person& person : world.people) show(person.surface);
+  for (const FloorRegion& region : world.floor_regions) show(region.surface);
+  return shown;
+}
+
 }  // namespace
 
-TextureBank::TextureBank(std::uint64_t seed) {
+TextureBank::TextureBank(const World& world)
+    : variants_(std::clamp(world.texture_variants, 1, kMaxVariants)),
+      look_salt_(world.texture_seed * 0x9E3779B97F4A7C15ULL),
+      storage_(static_cast<std::size_t>(kTextureCount * variants_)),
+      levels_(static_cast<std::size_t>(kTextureCount * variants_)) {
+  const std::array<bool, kTextureCount> shown = textures_shown(world);
+  for (int t = 0; t < kTextureCount; ++t) {
+    const auto texture = static_cast<Texture>(t);
+    // A blank surface has one look, however many variants.
+    const int count = shown[static_cast<std::size_t>(t)] && texture != Texture::blank ? variants_ : 1;
+    for (int variant = 0; variant < count; ++variant) build(texture, variant, world.texture_seed);
+  }
+}
+
+void TextureBank::build(Texture texture, int variant, std::uint64_t seed) {
+  const auto t = static_cast<std::uint32_t>(texture);
+  // Variant 0 draws from the stream the one tile of a world without variants drew from.
+  core::RandomStream random(seed, {core::stream_purpose::sim_world, t, 1U + static_cast<std::uint32_t>(variant)});
+  const Canvas canvas = make_texture(texture, random);
   std::size_t total = 0;
   for (int level = 0; level < kLevels; ++level) total += static_cast<std::size_t>(kSize >> level) * static_cast<std::size_t>(kSize >> level);
-  for (int t = 0; t < kTextureCount; ++t) {
-    core::RandomStream random(seed, {core::stream_purpose::sim_world, static_cast<std::uint32_t>(t), 1});
-    const Canvas canvas = make_texture(static_cast<Texture>(t), random);
-    std::vector<std::uint8_t>& store = storage_[static_cast<std::size_t>(t)];
-    store.resize(total);
-    // Level 0 quantised from the canvas, each coarser level the 2x2 mean of the one before.
-    std::vector<float> current = canvas.values();  // row-major (v, u)
-    std::size_t offset = 0;
-    for (int level = 0; level < kLevels; ++level) {
-      const int size = kSize >> level;
-      if (level > 0) {
-        std::vector<float> coarser(static_cast<std::size_t>(size) * static_cast<std::size_t>(size));
-        const int fine = size * 2;
-        for (int v = 0; v < size; ++v) {
-          for (int u = 0; u < size; ++u) {
-            auto f = [&](int du, int dv) { return current[static_cast<std::size_t>((2 * v + dv) * fine + 2 * u + du)]; };
-            coarser[static_cast<std::size_t>(v * size + u)] = 0.25F * (f(0, 0) + f(1, 0) + f(0, 1) + f(1, 1));
-          }
-        }
-        current.swap(coarser);
-      }
-      for (int u = 0; u < size; ++u) {
-        for (int v = 0; v < size; ++v) {
-          const float value = std::clamp(current[static_cast<std::size_t>(v * size + u)], 0.0F, 1.0F);
-          store[offset + static_cast<std::size_t>(u * size + v)] = static_cast<std::uint8_t>(std::lround(value * 255.0F));
+  const std::size_t index = static_cast<std::size_t>(t) * static_cast<std::size_t>(variants_) + static_cast<std::size_t>(variant);
+  std::vector<std::uint8_t>& store = storage_[index];
+  store.resize(total);
+  // Level 0 quantised from the canvas, each coarser level the 2x2 mean of the one before.
+  std::vector<float> current = canvas.values();  // row-major (v, u)
+  std::size_t offset = 0;
+  for (int level = 0; level < kLevels; ++level) {
+    const int size = kSize >> level;
+    if (level > 0) {
+      std::vector<float> coarser(static_cast<std::size_t>(size) * static_cast<std::size_t>(size));
+      const int fine = size * 2;
+      for (int v = 0; v < size; ++v) {
+        for (int u = 0; u < size; ++u) {
+          auto f = [&](int du, int dv) { return current[static_cast<std::size_t>((2 * v + dv) * fine + 2 * u + du)]; };
+          coarser[static_cast<std::size_t>(v * size + u)] = 0.25F * (f(0, 0) + f(1, 0) + f(0, 1) + f(1, 1));
         }
       }
-      Level& entry = levels_[static_cast<std::size_t>(t)][static_cast<std::size_t>(level)];
-      entry.size_log2 = kBaseSizeLog2 - level;
-      entry.texels_per_m = 1.0 / (kTexelSize_m * static_cast<double>(1 << level));
-      entry.texels = store.data() + offset;
-      offset += static_cast<std::size_t>(size) * static_cast<std::size_t>(size);
+      current.swap(coarser);
     }
+    for (int u = 0; u < size; ++u) {
+      for (int v = 0; v < size; ++v) {
+        const float value = std::clamp(current[static_cast<std::size_t>(v * size + u)], 0.0F, 1.0F);
+        store[offset + static_cast<std::size_t>(u * size + v)] = static_cast<std::uint8_t>(std::lround(value * 255.0F));
+      }
+    }
+    Level& entry = levels_[index][static_cast<std::size_t>(level)];
+    entry.size_log2 = kBaseSizeLog2 - level;
+    entry.texels_per_m = 1.0 / (kTexelSize_m * static_cast<double>(1 << level));
+    entry.texels = store.data() + offset;
+    offset += static_cast<std::size_t>(size) * static_cast<std::size_t>(size);
   }
 }
 

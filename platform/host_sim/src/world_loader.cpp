@@ -8,7 +8,9 @@
 #include <initializer_list>
 #include <sstream>
 
+#include "stereoscout/core/config.hpp"
 #include "stereoscout/core/random.hpp"
+#include "stereoscout/host_sim/textures.hpp"
 #include "stereoscout/host_sim/world.hpp"
 
 namespace stereoscout::host_sim {
@@ -406,13 +408,21 @@ void read_people_and_regions(WorldParser& parser, const cv::FileNode& root, Worl
 
 void read_top_level(WorldParser& parser, const cv::FileNode& root, World& world) {
   parser.check_keys(root, "",
-                    {"name", "seed", "ceiling_height", "start", "floor", "ceiling", "walls", "prisms", "boxes",
+                    {"name", "seed", "texture_variants", "ceiling_height", "start", "floor", "ceiling", "walls", "prisms", "boxes",
                      "cylinders", "people", "floor_regions", "lights"},
                     false);
   parser.text(root, "", "name", world.name, false);
   double seed = 1.0;
   if (parser.number(root, "", "seed", seed, 0.0, 2147483647.0, false)) world.texture_seed = static_cast<std::uint64_t>(seed);
   parser.seed_ = world.texture_seed;
+  double variants = 1.0;
+  if (parser.number(root, "", "texture_variants", variants, 1.0, TextureBank::kMaxVariants, false)) {
+    if (variants == std::floor(variants)) {
+      world.texture_variants = static_cast<int>(variants);
+    } else {
+      parser.error("texture_variants", "expected a whole number of tiles, got " + core::format_number(variants));
+    }
+  }
   parser.number(root, "", "ceiling_height", world.ceiling_height, 0.5, 100.0, false);
   double start[3] = {0.0, 0.0, 0.0};
   if (root["start"].empty()) {

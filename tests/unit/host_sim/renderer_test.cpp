@@ -202,6 +202,77 @@ TEST(Renderer, TableTopIsSeenFromBelowAndTheBoxFromAbove) {
   EXPECT_NEAR(view.depth.at<float>(static_cast<int>(std::lround(row_top)), 320), 2.5, 0.05);
 }
 
+// Descriptors of `a` that have a look-alike in `b`: the nearest is within the front end's
+// match distance (vision.match_max_distance, 180) and clearly nearer than the second.
+int look_alikes(const cv::Mat& a, const cv::Mat& b) {
+  cv::BFMatcher matcher(cv::NORM_L2);
+  std::vector<std::vector<cv::DMatch>> nearest;
+  matcher.knnMatch(a, b, nearest, 2);
+  int count = 0;
+  for (const auto& pair : nearest) {
+    if (pair.size() == 2 && pair[0].distance < 180.0F && pair[0].distance < 0.8F * pair[1].distance) ++count;
+  }
+  return count;
+}
+
+TEST(Renderer, WithTextureVariantsTwoPlacesOfOneTextureDoNotLookAlike) {
+  // A 40 m wall of posters, seen square from 2 m (3.2 m of it in view) at five pairs of places
+  // two tiles (5.12 m) apart. With one tile the two views of a pair show the same texels; with
+  // variants each 2.56 m cell of the wall shows one of 16 looks (8 tiles, mirrored or not), so
+  // a pair shares a look only by chance.
+  struct Views {
+    int keypoints = 0;
+    int alike = 0;
+    int pairs_mostly_alike = 0;
+  };
+  const auto wall_views = [](int variants) {
+    const World world = load_or_fail("seed: 5\ntexture_variants: " + std::to_string(variants) +
+                                     "\nstart: [1, 1, 0]\nfloor: {texture: blank}\nceiling: {texture: blank}\n"
+                                     "walls:\n  - {points: [[0, 6], [40, 6]], texture: poster, contrast: 0.8}\n");
+    core::SimConfig sim;
+    sim.image_noise_sigma = 0.0;
+    const core::CameraConfig camera;
+    StereoRenderer renderer(world, camera, sim, 1);
+    cv::Mat left(camera.height_px, camera.width_px, CV_8UC1);
+    cv::Mat right(camera.height_px, camera.width_px, CV_8UC1);
+    Views views;
+    for (double x = 3.0; x < 30.0; x += 6.5) {
+      cv::Mat here;
+      cv::Mat there;
+      renderer.render(core::Pose2{x, 4.0, core::kPi / 2.0}, 0.0, 0.0, 0, left, right);
+      sift_keypoints(right, &here);
+      renderer.render(core::Pose2{x + 5.12, 4.0, core::kPi / 2.0}, 0.0, 0.0, 0, left, right);
+      sift_keypoints(right, &there);
+      const int alike = look_alikes(here, there);
+      views.keypoints += here.rows;
+      views.alike += alike;
+      views.pairs_mostly_alike += 2 * alike > here.rows ? 1 : 0;
+    }
+    return views;
+  };
+  const Views tile = wall_views(1);
+  const Views variants = wall_views(8);
+  std::printf("keypoints with a look-alike two tiles along: one tile %d of %d, 8 variants %d of %d\n", tile.alike,
+              tile.keypoints, variants.alike, variants.keypoints);
+  EXPECT_EQ(tile.pairs_mostly_alike, 5);
+  EXPECT_GT(tile.alike, 9 * tile.keypoints / 10);
+  EXPECT_LE(variants.pairs_mostly_alike, 1);
+  EXPECT_LT(variants.alike, variants.keypoints / 4);
+  // The variants are drawn by the texture's own generator: as many keypoints, give or take.
+  EXPECT_GT(variants.keypoints, tile.keypoints / 2);
+}
+
+TEST(Renderer, OneTextureVariantRendersAsTheOneTile) {
+  // A world without the key and one with texture_variants: 1 are the same world.
+  const std::string room = testing::room_yaml("poster", "carpet");
+  const core::Pose2 pose{6.0, 2.0, 0.7};
+  const Pair plain = render(load_or_fail(room), pose);
+  const Pair one = render(load_or_fail("texture_variants: 1\n" + room), pose);
+  const Pair eight = render(load_or_fail("texture_variants: 8\n" + room), pose);
+  EXPECT_EQ(cv::norm(plain.right, one.right, cv::NORM_L1), 0.0);
+  EXPECT_GT(cv::norm(plain.right, eight.right, cv::NORM_L1), 0.0);
+}
+
 TEST(Renderer, PanTurnsTheView) {
   core::SimConfig sim;
   sim.image_noise_sigma = 0.0;

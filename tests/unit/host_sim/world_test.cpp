@@ -93,6 +93,10 @@ TEST(World, WrongTypesAndRangesAreRejected) {
   EXPECT_EQ(first_error("walls: []\n"), "bad.yaml: start: missing (the robot's start pose [x, y, theta_deg] is required)");
   EXPECT_EQ(first_error(room_yaml("brick") + "floor_regions:\n  - {polygon: [[0, 0], [1, 0], [1, 1], [0, 0]], type: grass}\n"),
             "bad.yaml: floor_regions[0].type: unknown floor type 'grass' (tile, carpet)");
+  EXPECT_EQ(first_error("texture_variants: 2.5\n" + room_yaml("brick")),
+            "bad.yaml: texture_variants: expected a whole number of tiles, got 2.5");
+  EXPECT_EQ(first_error("texture_variants: 0\n" + room_yaml("brick")).rfind("bad.yaml: texture_variants: ", 0), 0U);
+  EXPECT_EQ(first_error("texture_variants: 33\n" + room_yaml("brick")).rfind("bad.yaml: texture_variants: ", 0), 0U);
 }
 
 TEST(World, MissingFileIsAnError) {

@@ -86,6 +86,10 @@ struct World {
   std::string name;
   std::string file;
   std::uint64_t texture_seed = 1;
+  // Tiles drawn per texture (textures.hpp): 1, one tile repeating every 2.56 m over every
+  // surface of its texture; more, each 2.56 m cell of a surface shows one of them, picked by
+  // a hash of the cell.
+  int texture_variants = 1;
   double ceiling_height = 2.8;
   core::Pose2 start;
   FloorType floor_type = FloorType::tile;
