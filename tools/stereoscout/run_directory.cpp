@@ -219,6 +219,8 @@ void write_identity_check(report::JsonWriter& json, const vision::IdentityCheck*
       .unsigned_integer("reobservations", check->reobservations())
       .unsigned_integer("consistent", check->consistent())
       .unsigned_integer("past_capacity", check->past_capacity())
+      .unsigned_integer("floor_reobservations", check->floor_reobservations())
+      .unsigned_integer("floor_consistent", check->floor_consistent())
       .end_object();
 }
 

@@ -67,5 +67,26 @@ TEST(IdentityCheck, IdentitiesPastTheCapacityAreCountedNotChecked) {
   EXPECT_EQ(check.past_capacity(), 4U);
 }
 
+TEST(IdentityCheck, ReobservationsOfFloorIdentitiesAreCountedApart) {
+  // The world's z is the height: the camera's optical axis points up here, 5 m below the floor,
+  // so a point 5 m along it lies on the floor and one 6 m along it 1 m above.
+  IdentityCheck check(10, kGate99, 0.05);
+  const Eigen::Isometry3d below(Eigen::Translation3d(0.0, 0.0, -5.0));
+  const core::LandmarkObservation first[] = {sighting(1, {0.0, 0.0, 5.0}), sighting(2, {0.0, 0.0, 6.0})};
+  check.observe(below, first, 2);
+  const core::LandmarkObservation again[] = {sighting(1, {0.0, 0.0, 5.0}), sighting(1, {1.0, 0.0, 5.0}),
+                                             sighting(2, {0.0, 0.0, 6.0})};
+  check.observe(below, again, 3);
+  EXPECT_EQ(check.reobservations(), 3U);
+  EXPECT_EQ(check.consistent(), 2U);
+  EXPECT_EQ(check.floor_reobservations(), 2U);
+  EXPECT_EQ(check.floor_consistent(), 1U);
+  // Without a floor height nothing is the floor's.
+  IdentityCheck no_floor(10, kGate99);
+  no_floor.observe(below, first, 2);
+  no_floor.observe(below, again, 3);
+  EXPECT_EQ(no_floor.floor_reobservations(), 0U);
+}
+
 }  // namespace
 }  // namespace stereoscout::vision

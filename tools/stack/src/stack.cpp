@@ -17,6 +17,10 @@ constexpr std::size_t kOdometryHistory = 16;
 // Records staged between two runs of the logging task (at most a frame, its true pose, a
 // few odometry readings, drive commands and gpio events): ample.
 constexpr std::size_t kStagedRecords = 256;
+// The identity check counts apart the identities first seen below this height: the floor's
+// (the simulator's truth has z the height above the floor; stereo points on it scatter by
+// centimetres).
+constexpr double kFloorPoint_m = 0.05;
 // How often start() polls for the first odometry reading.
 constexpr std::int64_t kStartPollNs = 10'000'000;
 
@@ -108,7 +112,7 @@ Stack::Stack(const core::SystemConfig& config, const StackOptions& options, cons
   }
   if (board.ground_truth != nullptr) {
     identity_check_ = std::make_unique<vision::IdentityCheck>(vision::landmark_id_capacity(config.vision),
-                                                              config.filter.association_gate_chi2);
+                                                              config.filter.association_gate_chi2, kFloorPoint_m);
   }
   vision_->allocate_scan(scan_);
   vision_->allocate_scan(seen_scan_);
