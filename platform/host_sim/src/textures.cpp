@@ -261,6 +261,7 @@ TextureBank::TextureBank(const World& world)
     // A blank surface has one look, however many variants.
     const int count = shown[static_cast<std::size_t>(t)] && texture != Texture::blank ? variants_ : 1;
     for (int variant = 0; variant < count; ++variant) build(texture, variant, world.texture_seed);
+    for (int variant = count; variant < variants_; ++variant) levels_[slot(texture, variant)] = levels_[slot(texture, 0)];
   }
 }
 
@@ -271,7 +272,7 @@ void TextureBank::build(Texture texture, int variant, std::uint64_t seed) {
   const Canvas canvas = make_texture(texture, random);
   std::size_t total = 0;
   for (int level = 0; level < kLevels; ++level) total += static_cast<std::size_t>(kSize >> level) * static_cast<std::size_t>(kSize >> level);
-  const std::size_t index = static_cast<std::size_t>(t) * static_cast<std::size_t>(variants_) + static_cast<std::size_t>(variant);
+  const std::size_t index = slot(texture, variant);
   std::vector<std::uint8_t>& store = storage_[index];
   store.resize(total);
   // Level 0 quantised from the canvas, each coarser level the 2x2 mean of the one before.

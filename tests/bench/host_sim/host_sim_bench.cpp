@@ -32,9 +32,11 @@ const World& world(const char* name) {
 }
 
 // Renders the pair (and the ground-truth depth) from poses along a loop through the world.
-void render_pair(benchmark::State& state, const char* name, bool with_depth) {
+// texture_variants: 0 keeps the world's own.
+void render_pair(benchmark::State& state, const char* name, bool with_depth, int texture_variants = 0) {
   const core::CameraConfig camera;
-  const World& w = world(name);
+  World w = world(name);
+  if (texture_variants > 0) w.texture_variants = texture_variants;
   StereoRenderer renderer(w, camera, core::SimConfig{}, 1);
   cv::Mat left(camera.height_px, camera.width_px, CV_8UC1);
   cv::Mat right(camera.height_px, camera.width_px, CV_8UC1);
@@ -58,10 +60,23 @@ void BM_RenderStereoPairLab(benchmark::State& state) { render_pair(state, "lab",
 void BM_RenderStereoPairWithDepthLab(benchmark::State& state) { render_pair(state, "lab", true); }
 void BM_RenderStereoPairOffice(benchmark::State& state) { render_pair(state, "office", false); }
 void BM_RenderStereoPairClutter(benchmark::State& state) { render_pair(state, "clutter", false); }
+// Each texel read hashes its 2.56 m cell to pick the cell's tile.
+void BM_RenderStereoPairOfficeTextureVariants8(benchmark::State& state) { render_pair(state, "office", false, 8); }
+// Start-up: the office's tiles, one per texture or eight per texture it shows.
+void BM_TextureBankOffice(benchmark::State& state) {
+  World w = world("office");
+  w.texture_variants = static_cast<int>(state.range(0));
+  for (auto _ : state) {
+    const TextureBank bank(w);
+    benchmark::DoNotOptimize(bank.level(Texture::carpet, 0).texels);
+  }
+}
 BENCHMARK(BM_RenderStereoPairLab)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_RenderStereoPairWithDepthLab)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_RenderStereoPairOffice)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_RenderStereoPairClutter)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_RenderStereoPairOfficeTextureVariants8)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_TextureBankOffice)->Arg(1)->Arg(8)->Unit(benchmark::kMillisecond);
 
 // One second of simulated driving (100 kinematics steps with collision checks, 5-6 odometry readings).
 void BM_SimulateOneSecondLab(benchmark::State& state) {

@@ -77,9 +77,7 @@ class TextureBank {
 
  private:
   std::size_t slot(Texture texture, int variant) const {
-    // Textures a world does not show keep only variant 0; their cells fall back to it.
-    const std::size_t index = static_cast<std::size_t>(texture) * static_cast<std::size_t>(variants_) + static_cast<std::size_t>(variant);
-    return levels_[index][0].texels != nullptr ? index : static_cast<std::size_t>(texture) * static_cast<std::size_t>(variants_);
+    return static_cast<std::size_t>(texture) * static_cast<std::size_t>(variants_) + static_cast<std::size_t>(variant);
   }
   std::uint32_t cell_look(Texture texture, int cell_u, int cell_v) const {
     std::uint64_t h = look_salt_ ^ (static_cast<std::uint64_t>(texture) << 48U) ^
@@ -95,7 +93,9 @@ class TextureBank {
   int variants_ = 1;
   std::uint64_t look_salt_ = 0;
   std::vector<std::vector<std::uint8_t>> storage_;    // per slot: all levels, finest first
-  std::vector<std::array<Level, kLevels>> levels_;    // per slot (texture x variants_ + variant)
+  // Per slot (texture x variants_ + variant). A texture the world does not show, and blank, has
+  // only variant 0's tile: its other slots point to it.
+  std::vector<std::array<Level, kLevels>> levels_;
 };
 
 }  // namespace stereoscout::host_sim
