@@ -1,8 +1,8 @@
 #pragma once
 // Procedural textures for the simulated world, generated once at world load from a seed:
-// square tiles, one or more variants of each texture (World::texture_variants), each with a
-// small mip chain so that far surfaces are filtered
-// instead of aliased (aliasing would differ between the two cameras and make false matches).
+// square tiles, one or more of each texture (World::texture_variants), each with a small mip
+// chain so that far surfaces are filtered instead of aliased (aliasing would differ between
+// the two cameras and make false matches).
 // Tiles are stored column-major (texel (u, v) at u * size + v): the renderer walks image
 // columns, which run along v on a vertical surface.
 
@@ -34,11 +34,10 @@ class TextureBank {
   TextureBank(const TextureBank&) = delete;
   TextureBank& operator=(const TextureBank&) = delete;
 
-  // Level `level` (0 = finest) of variant `variant` of `texture`.
-  const Level& level(Texture texture, int level, int variant = 0) const {
-    return levels_[slot(texture, variant)][static_cast<std::size_t>(level)];
+  // Level `level` (0 = finest) of `texture`'s first tile (the variants share its sizes).
+  const Level& level(Texture texture, int level) const {
+    return levels_[slot(texture, 0)][static_cast<std::size_t>(level)];
   }
-  int variants() const { return variants_; }
   // The mip level whose texel matches a pixel footprint of `footprint_m` on the surface.
   static int level_for_footprint(double footprint_m) {
     int level = 0;
