@@ -303,16 +303,19 @@ TEST(Renderer, PeopleWalkThroughTheView) {
 }
 
 TEST(Renderer, RenderingDoesNotAllocate) {
-  const World world = lab();
-  const core::CameraConfig camera;
-  StereoRenderer renderer(world, camera, core::SimConfig{}, 1);
-  cv::Mat left(camera.height_px, camera.width_px, CV_8UC1);
-  cv::Mat right(camera.height_px, camera.width_px, CV_8UC1);
-  cv::Mat depth(camera.height_px, camera.width_px, CV_32FC1);
-  renderer.render(core::Pose2{3, 3, 0}, 0.0, 0.0, 0, left, right, &depth);
-  const core::AllocationScope scope;
-  renderer.render(core::Pose2{12, 7, 2.0}, 0.3, 5.0, 1, left, right, &depth);
-  EXPECT_EQ(scope.allocations(), 0U);
+  for (int variants : {1, 8}) {
+    World world = lab();
+    world.texture_variants = variants;
+    const core::CameraConfig camera;
+    StereoRenderer renderer(world, camera, core::SimConfig{}, 1);
+    cv::Mat left(camera.height_px, camera.width_px, CV_8UC1);
+    cv::Mat right(camera.height_px, camera.width_px, CV_8UC1);
+    cv::Mat depth(camera.height_px, camera.width_px, CV_32FC1);
+    renderer.render(core::Pose2{3, 3, 0}, 0.0, 0.0, 0, left, right, &depth);
+    const core::AllocationScope scope;
+    renderer.render(core::Pose2{12, 7, 2.0}, 0.3, 5.0, 1, left, right, &depth);
+    EXPECT_EQ(scope.allocations(), 0U) << variants << " texture variants";
+  }
 }
 
 TEST(Renderer, TiltedCameraIsRefusedWithTheKey) {
