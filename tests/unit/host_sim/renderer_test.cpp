@@ -203,7 +203,7 @@ TEST(Renderer, TableTopIsSeenFromBelowAndTheBoxFromAbove) {
 }
 
 // Descriptors of `a` that have a look-alike in `b`: the nearest is within the front end's
-// match distance (vision.match_max_distance, 180) and clearly nearer than the second.
+// match distance (vision.index_match_distance, 180) and clearly nearer than the second.
 int look_alikes(const cv::Mat& a, const cv::Mat& b) {
   cv::BFMatcher matcher(cv::NORM_L2);
   std::vector<std::vector<cv::DMatch>> nearest;
