@@ -3,6 +3,7 @@
 // 2.5D scan. Images come from the synthetic renderer of the unit tests (a textured room).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <map>
 #include <memory>
 #include <vector>
@@ -64,11 +65,19 @@ void BM_StereoMatching(benchmark::State& state) {
 }
 BENCHMARK(BM_StereoMatching)->Arg(0)->Arg(1)->ArgName("cross_check")->Unit(benchmark::kMicrosecond);
 
-// One lookup (64 leaf checks) in an index holding N random descriptors. The index is built
-// once per size (Google Benchmark calls the function several times).
+// One lookup (64 or 1024 leaf checks: vision.index_max_leaf_checks) in an index holding N
+// random descriptors. The index is built once per size (Google Benchmark calls the function
+// several times), with its search heap sized for the deepest search benchmarked.
+// Queries are stored descriptors with noise of +-`noise` per byte: 1 puts them about 10 from
+// their source (the same key seen again from the same place); 20 about 135, near the match
+// distance (a key seen from elsewhere), where a bounded search can stop short of the source.
+constexpr int kDeepestLeafChecks = 1024;
+constexpr std::size_t kQueries = 1024;
+
 struct IndexFixture {
   std::unique_ptr<DescriptorIndex> index;
-  std::vector<Descriptor> queries;
+  std::vector<Descriptor> sources;          // the first kQueries stored descriptors
+  std::vector<std::uint32_t> source_entries;
 };
 
 IndexFixture& index_of_size(std::size_t size) {
@@ -78,41 +87,58 @@ IndexFixture& index_of_size(std::size_t size) {
     DescriptorIndexParams params;
     params.capacity = size;
     params.candidate_min_frames = 1;
+    params.max_leaf_checks = kDeepestLeafChecks;
     fixture.index = std::make_unique<DescriptorIndex>(params);
     fixture.index->set_max_leaf_checks(1);  // building: random keys are all new anyway
     core::RandomStream random(1, core::StreamId{0, 0, 0});
     for (std::size_t i = 0; i < size; ++i) {
       Descriptor descriptor{};
       for (auto& value : descriptor) value = static_cast<std::uint8_t>(random.uniform_index(64));
-      fixture.index->observe(descriptor, 0);
-      if (fixture.queries.size() < 1024) {
-        // Queries: stored descriptors with a little noise, as a re-observed key.
-        Descriptor query = descriptor;
-        for (auto& value : query) value = static_cast<std::uint8_t>(value + random.uniform_index(3));
-        fixture.queries.push_back(query);
+      const IndexLookup stored = fixture.index->observe(descriptor, 0);
+      if (fixture.sources.size() < kQueries) {
+        fixture.sources.push_back(descriptor);
+        fixture.source_entries.push_back(stored.entry);
       }
     }
   }
   return fixture;
 }
 
+std::vector<Descriptor> noisy_queries(const std::vector<Descriptor>& sources, int noise) {
+  core::RandomStream random(2, core::StreamId{0, 0, 0});
+  std::vector<Descriptor> queries = sources;
+  const auto span = static_cast<std::uint32_t>(2 * noise + 1);
+  for (Descriptor& query : queries) {
+    for (auto& value : query) {
+      const int noisy = static_cast<int>(value) + static_cast<int>(random.uniform_index(span)) - noise;
+      value = static_cast<std::uint8_t>(std::clamp(noisy, 0, 255));
+    }
+  }
+  return queries;
+}
+
 void BM_IndexLookup(benchmark::State& state) {
   IndexFixture& fixture = index_of_size(static_cast<std::size_t>(state.range(0)));
   DescriptorIndex& index = *fixture.index;
   index.set_max_leaf_checks(static_cast<int>(state.range(1)));
+  const std::vector<Descriptor> queries = noisy_queries(fixture.sources, static_cast<int>(state.range(2)));
   const std::uint64_t leaves_before = index.stats().leaves_checked;
   const std::uint64_t lookups_before = index.stats().lookups;
   std::size_t next = 0;
+  std::uint64_t found_source = 0;
   for (auto _ : state) {
-    benchmark::DoNotOptimize(index.nearest(fixture.queries[next]));
-    next = (next + 1) % fixture.queries.size();
+    const IndexNeighbour neighbour = index.nearest(queries[next]);
+    found_source += neighbour.found && neighbour.entry == fixture.source_entries[next] ? 1U : 0U;
+    next = (next + 1) % queries.size();
   }
-  state.counters["leaves_per_lookup"] = static_cast<double>(index.stats().leaves_checked - leaves_before) /
-                                        static_cast<double>(index.stats().lookups - lookups_before);
+  const auto lookups = static_cast<double>(index.stats().lookups - lookups_before);
+  state.counters["leaves_per_lookup"] = static_cast<double>(index.stats().leaves_checked - leaves_before) / lookups;
+  // Share of lookups that found the entry their query was made from (the true neighbour).
+  state.counters["found_source"] = static_cast<double>(found_source) / lookups;
 }
 BENCHMARK(BM_IndexLookup)
-    ->ArgsProduct({{1000, 10000, 100000, 1000000}, {64}})
-    ->ArgNames({"entries", "leaf_checks"})
+    ->ArgsProduct({{1000, 10000, 100000, 1000000}, {64, kDeepestLeafChecks}, {1, 20}})
+    ->ArgNames({"entries", "leaf_checks", "noise"})
     ->Unit(benchmark::kMicrosecond);
 
 // simd 1: the build of the inner loops the CPU runs best (label: which); 0: the portable one.
