@@ -24,6 +24,7 @@ DescriptorIndexParams index_params_from_config(const core::VisionConfig& vision)
   params.max_leaf_checks = vision.index_max_leaf_checks;
   params.match_distance = vision.index_match_distance;
   params.candidate_min_frames = vision.candidate_min_frames;
+  params.box_distance = vision.index_box_distance;
   return params;
 }
 
@@ -115,6 +116,8 @@ bool DescriptorIndex::split_leaf(std::uint32_t leaf) {
   }
   const std::uint32_t low = allocate_leaf();
   const std::uint32_t high = allocate_leaf();
+  nodes_[low].parent = leaf;
+  nodes_[high].parent = leaf;
   for (std::size_t i = 0; i < count; ++i) {
     const std::uint32_t entry = bucket(leaf)[i];
     const std::uint32_t child = descriptors_[entry][dimension] < threshold ? low : high;
@@ -211,8 +214,25 @@ DescriptorIndex::HeapItem DescriptorIndex::heap_pop() {
   return top;
 }
 
-IndexNeighbour DescriptorIndex::nearest(const Descriptor& descriptor) {
+IndexNeighbour DescriptorIndex::nearest(const Descriptor& descriptor, std::uint32_t radius_squared) {
   ++stats_.lookups;
+  return params_.box_distance ? nearest_by_box_distance(descriptor, radius_squared) : nearest_by_largest_gap(descriptor);
+}
+
+void DescriptorIndex::check_bucket(const std::uint32_t* members, std::size_t count, const Descriptor& descriptor,
+                                   const std::vector<Descriptor>& descriptors, IndexNeighbour& best) {
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::uint32_t entry = members[i];
+    const std::uint32_t distance = descriptor_distance_squared(descriptor, descriptors[entry]);
+    if (!best.found || distance < best.distance_squared || (distance == best.distance_squared && entry < best.entry)) {
+      best = {true, entry, distance};
+    }
+  }
+}
+
+// The search as first built: a far cell's bound is the largest single-dimension gap on the
+// path to it, which never exceeds the true distance but often falls far below it.
+IndexNeighbour DescriptorIndex::nearest_by_largest_gap(const Descriptor& descriptor) {
   IndexNeighbour best;
   heap_size_ = 0;
   heap_push({0, root_});
@@ -234,14 +254,70 @@ IndexNeighbour DescriptorIndex::nearest(const Descriptor& descriptor) {
       node = go_low ? split.low : split.high;
     }
     ++leaves_checked;
-    const std::uint32_t* members = bucket(node);
-    for (std::size_t i = 0; i < nodes_[node].count; ++i) {
-      const std::uint32_t entry = members[i];
-      const std::uint32_t distance = descriptor_distance_squared(descriptor, descriptors_[entry]);
-      if (!best.found || distance < best.distance_squared || (distance == best.distance_squared && entry < best.entry)) {
-        best = {true, entry, distance};
+    check_bucket(bucket(node), nodes_[node].count, descriptor, descriptors_, best);
+  }
+  stats_.leaves_checked += static_cast<std::uint64_t>(leaves_checked);
+  return best;
+}
+
+// The byte ranges of a node's cell, from the splits on the path up to the root.
+void DescriptorIndex::cell_of(std::uint32_t node, Cell& cell) const {
+  cell.low.fill(0);
+  cell.high.fill(255);
+  for (std::uint32_t child = node, parent = nodes_[node].parent; parent != kNone;
+       child = parent, parent = nodes_[parent].parent) {
+    const Node& split = nodes_[parent];
+    const std::size_t d = split.dimension;
+    if (child == split.low) {
+      cell.high[d] = std::min<std::uint8_t>(cell.high[d], static_cast<std::uint8_t>(split.threshold - 1));
+    } else {
+      cell.low[d] = std::max(cell.low[d], split.threshold);
+    }
+  }
+}
+
+// Priority search on the exact distance from the key to each cell (Arya and Mount): going
+// down, the far side of a split differs from the near side in one dimension only, so its
+// squared distance is the near side's with that dimension's gap replaced. With exact bounds
+// the search stops as soon as the nearest cell left is farther than the best entry or the
+// radius, which a re-observed key's neighbourhood usually allows well within the budget.
+IndexNeighbour DescriptorIndex::nearest_by_box_distance(const Descriptor& descriptor, std::uint32_t radius_squared) {
+  IndexNeighbour best;
+  heap_size_ = 0;
+  heap_push({0, root_});
+  int leaves_checked = 0;
+  Cell& cell = search_cell_;
+  while (heap_size_ > 0 && leaves_checked < params_.max_leaf_checks) {
+    const HeapItem item = heap_pop();
+    if (item.bound > radius_squared || (best.found && item.bound > best.distance_squared)) {
+      break;  // every remaining cell is farther than the radius or the best entry found
+    }
+    std::uint32_t node = item.node;
+    cell_of(node, cell);
+    while (!nodes_[node].is_leaf()) {
+      const Node& split = nodes_[node];
+      const std::size_t d = split.dimension;
+      const int value = descriptor[d];
+      const int low = cell.low[d];
+      const int high = cell.high[d];
+      const int gap = value < low ? low - value : (value > high ? value - high : 0);
+      // Cells hold integers: the low side has values <= threshold - 1.
+      const bool go_low = value < split.threshold;
+      const int far_gap = go_low ? split.threshold - value : value - (split.threshold - 1);
+      const auto far_bound = item.bound - static_cast<std::uint32_t>(gap * gap) + static_cast<std::uint32_t>(far_gap * far_gap);
+      if (far_bound <= radius_squared && (!best.found || far_bound <= best.distance_squared)) {
+        heap_push({far_bound, go_low ? split.high : split.low});
+      }
+      if (go_low) {
+        cell.high[d] = static_cast<std::uint8_t>(split.threshold - 1);
+        node = split.low;
+      } else {
+        cell.low[d] = split.threshold;
+        node = split.high;
       }
     }
+    ++leaves_checked;
+    check_bucket(bucket(node), nodes_[node].count, descriptor, descriptors_, best);
   }
   stats_.leaves_checked += static_cast<std::uint64_t>(leaves_checked);
   return best;
@@ -343,7 +419,7 @@ std::uint32_t DescriptorIndex::new_entry(const Descriptor& descriptor, std::uint
 
 IndexLookup DescriptorIndex::observe(const Descriptor& descriptor, std::uint64_t frame) {
   IndexLookup lookup;
-  const IndexNeighbour neighbour = nearest(descriptor);
+  const IndexNeighbour neighbour = nearest(descriptor, match_distance_squared_);
   if (neighbour.found && neighbour.distance_squared <= match_distance_squared_) {
     ++stats_.matched;
     record_sighting(neighbour.entry, frame);

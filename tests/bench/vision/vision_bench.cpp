@@ -68,14 +68,20 @@ BENCHMARK(BM_StereoMatching)->Arg(0)->Arg(1)->ArgName("cross_check")->Unit(bench
 // One lookup (64 or 1024 leaf checks: vision.index_max_leaf_checks) in an index holding N
 // random descriptors. The index is built once per size (Google Benchmark calls the function
 // several times), with its search heap sized for the deepest search benchmarked.
-// Queries are stored descriptors with noise of +-`noise` per byte: 1 puts them about 10 from
-// their source (the same key seen again from the same place); 20 about 135, near the match
-// distance (a key seen from elsewhere), where a bounded search can stop short of the source.
+// Queries (kind): 0, stored descriptors with noise of +-1 per byte, about 10 from their source
+// (the same key seen again from the same place); 1, noise of +-20, about 135 from it, under the
+// match distance (a key seen from elsewhere), where a bounded search can stop short of the
+// source; 2, fresh random descriptors, about 295 from every entry (a key seen for the first
+// time, as most are). found_source counts the lookups that found the query's source.
+// box 1: the search orders cells by their exact distance (vision.index_box_distance) and
+// stops at the match distance, as DescriptorIndex::observe searches.
 constexpr int kDeepestLeafChecks = 1024;
 constexpr std::size_t kQueries = 1024;
+constexpr std::uint32_t kMatchDistanceSquared = 180 * 180;  // vision.index_match_distance
 
 struct IndexFixture {
-  std::unique_ptr<DescriptorIndex> index;
+  std::unique_ptr<DescriptorIndex> index;  // searched by the largest gap
+  std::unique_ptr<DescriptorIndex> box_index;  // the same entries, searched by box distance
   std::vector<Descriptor> sources;          // the first kQueries stored descriptors
   std::vector<std::uint32_t> source_entries;
 };
@@ -90,11 +96,15 @@ IndexFixture& index_of_size(std::size_t size) {
     params.max_leaf_checks = kDeepestLeafChecks;
     fixture.index = std::make_unique<DescriptorIndex>(params);
     fixture.index->set_max_leaf_checks(1);  // building: random keys are all new anyway
+    params.box_distance = true;
+    fixture.box_index = std::make_unique<DescriptorIndex>(params);
+    fixture.box_index->set_max_leaf_checks(1);
     core::RandomStream random(1, core::StreamId{0, 0, 0});
     for (std::size_t i = 0; i < size; ++i) {
       Descriptor descriptor{};
       for (auto& value : descriptor) value = static_cast<std::uint8_t>(random.uniform_index(64));
       const IndexLookup stored = fixture.index->observe(descriptor, 0);
+      fixture.box_index->observe(descriptor, 0);
       if (fixture.sources.size() < kQueries) {
         fixture.sources.push_back(descriptor);
         fixture.source_entries.push_back(stored.entry);
@@ -104,14 +114,16 @@ IndexFixture& index_of_size(std::size_t size) {
   return fixture;
 }
 
-std::vector<Descriptor> noisy_queries(const std::vector<Descriptor>& sources, int noise) {
+std::vector<Descriptor> index_queries(const std::vector<Descriptor>& sources, int kind) {
   core::RandomStream random(2, core::StreamId{0, 0, 0});
   std::vector<Descriptor> queries = sources;
+  const int noise = kind == 0 ? 1 : 20;
   const auto span = static_cast<std::uint32_t>(2 * noise + 1);
   for (Descriptor& query : queries) {
     for (auto& value : query) {
       const int noisy = static_cast<int>(value) + static_cast<int>(random.uniform_index(span)) - noise;
-      value = static_cast<std::uint8_t>(std::clamp(noisy, 0, 255));
+      value = kind == 2 ? static_cast<std::uint8_t>(random.uniform_index(64))
+                        : static_cast<std::uint8_t>(std::clamp(noisy, 0, 255));
     }
   }
   return queries;
@@ -119,15 +131,15 @@ std::vector<Descriptor> noisy_queries(const std::vector<Descriptor>& sources, in
 
 void BM_IndexLookup(benchmark::State& state) {
   IndexFixture& fixture = index_of_size(static_cast<std::size_t>(state.range(0)));
-  DescriptorIndex& index = *fixture.index;
+  DescriptorIndex& index = state.range(3) != 0 ? *fixture.box_index : *fixture.index;
   index.set_max_leaf_checks(static_cast<int>(state.range(1)));
-  const std::vector<Descriptor> queries = noisy_queries(fixture.sources, static_cast<int>(state.range(2)));
+  const std::vector<Descriptor> queries = index_queries(fixture.sources, static_cast<int>(state.range(2)));
   const std::uint64_t leaves_before = index.stats().leaves_checked;
   const std::uint64_t lookups_before = index.stats().lookups;
   std::size_t next = 0;
   std::uint64_t found_source = 0;
   for (auto _ : state) {
-    const IndexNeighbour neighbour = index.nearest(queries[next]);
+    const IndexNeighbour neighbour = index.nearest(queries[next], kMatchDistanceSquared);
     found_source += neighbour.found && neighbour.entry == fixture.source_entries[next] ? 1U : 0U;
     next = (next + 1) % queries.size();
   }
@@ -137,8 +149,8 @@ void BM_IndexLookup(benchmark::State& state) {
   state.counters["found_source"] = static_cast<double>(found_source) / lookups;
 }
 BENCHMARK(BM_IndexLookup)
-    ->ArgsProduct({{1000, 10000, 100000, 1000000}, {64, kDeepestLeafChecks}, {1, 20}})
-    ->ArgNames({"entries", "leaf_checks", "noise"})
+    ->ArgsProduct({{1000, 10000, 100000, 1000000}, {64, kDeepestLeafChecks}, {0, 1, 2}, {0, 1}})
+    ->ArgNames({"entries", "leaf_checks", "query", "box"})
     ->Unit(benchmark::kMicrosecond);
 
 // simd 1: the build of the inner loops the CPU runs best (label: which); 0: the portable one.

@@ -90,6 +90,92 @@ TEST(DescriptorIndex, BoundedBestBinFirstFindsNoisyCopies) {
   EXPECT_LE(index.stats().leaves_checked, index.stats().lookups * 64U);
 }
 
+DescriptorIndexParams box_params(std::size_t capacity, int leaf_checks) {
+  DescriptorIndexParams p = params(capacity, leaf_checks, 1);
+  p.box_distance = true;
+  return p;
+}
+
+std::uint32_t brute_force_nearest(const std::vector<Descriptor>& stored, const Descriptor& query) {
+  std::uint32_t best = 0;
+  for (std::uint32_t i = 1; i < stored.size(); ++i) {
+    if (descriptor_distance_squared(query, stored[i]) < descriptor_distance_squared(query, stored[best])) {
+      best = i;
+    }
+  }
+  return best;
+}
+
+TEST(DescriptorIndex, BoxDistanceGivesTheExactNearestNeighbour) {
+  const std::vector<Descriptor> stored = random_set(3000, 1);
+  DescriptorIndex index(box_params(4000, 100000));
+  for (std::size_t i = 0; i < stored.size(); ++i) {
+    index.observe(stored[i], i);
+  }
+  core::RandomStream random(5, core::StreamId{0, 0, 0});
+  for (int q = 0; q < 100; ++q) {
+    // Half the queries are noisy copies (a neighbour near), half random (none near).
+    const Descriptor query = q % 2 == 0 ? noisy_copy(stored[random.uniform_index(3000)], random, 20)
+                                        : random_descriptor(random);
+    const std::uint32_t best = brute_force_nearest(stored, query);
+    const IndexNeighbour found = index.nearest(query);
+    ASSERT_TRUE(found.found);
+    EXPECT_EQ(found.distance_squared, descriptor_distance_squared(query, stored[best]));
+  }
+}
+
+TEST(DescriptorIndex, BoxDistanceSearchStopsAtTheMatchDistance) {
+  const std::vector<Descriptor> stored = random_set(3000, 1);
+  DescriptorIndex by_gap(params(4000, 100000, 1));
+  DescriptorIndex by_box(box_params(4000, 100000));
+  for (std::size_t i = 0; i < stored.size(); ++i) {
+    by_gap.observe(stored[i], i);
+    by_box.observe(stored[i], i);
+  }
+  // Stored bytes lie in 0..63; keys of bytes 128..191 are at least 64 * sqrt(128) = 724 away,
+  // far past the match distance (100 here): each becomes a new entry.
+  core::RandomStream random(6, core::StreamId{0, 0, 0});
+  const std::uint64_t gap_leaves_before = by_gap.stats().leaves_checked;
+  const std::uint64_t box_leaves_before = by_box.stats().leaves_checked;
+  for (int q = 0; q < 50; ++q) {
+    Descriptor far = random_descriptor(random);
+    for (auto& value : far) value = static_cast<std::uint8_t>(value + 128);
+    const auto frame = 3000 + static_cast<std::uint64_t>(q);
+    EXPECT_EQ(by_gap.observe(far, frame).outcome, Outcome::landmark);  // promoted at once
+    EXPECT_EQ(by_box.observe(far, frame).outcome, Outcome::landmark);
+  }
+  EXPECT_EQ(by_box.stats().matched, 0U);
+  // The largest gap never reaches the match distance's square, so that search runs through
+  // every leaf; the box distance leaves out every cell past the match distance.
+  const std::uint64_t gap_leaves = by_gap.stats().leaves_checked - gap_leaves_before;
+  const std::uint64_t box_leaves = by_box.stats().leaves_checked - box_leaves_before;
+  EXPECT_LT(box_leaves * 10, gap_leaves) << "box " << box_leaves << ", largest gap " << gap_leaves;
+}
+
+TEST(DescriptorIndex, BoxDistanceFindsKeysNearTheMatchDistanceAtLeastAsOften) {
+  const std::vector<Descriptor> stored = random_set(20000, 3);
+  DescriptorIndex by_gap(params(20000, 64, 1));
+  DescriptorIndex by_box(box_params(20000, 64));
+  for (std::size_t i = 0; i < stored.size(); ++i) {
+    by_gap.observe(stored[i], 0);
+    by_box.observe(stored[i], 0);
+  }
+  core::RandomStream random(4, core::StreamId{0, 0, 0});
+  int found_by_gap = 0;
+  int found_by_box = 0;
+  for (int q = 0; q < 500; ++q) {
+    const std::uint32_t target = random.uniform_index(static_cast<std::uint32_t>(stored.size()));
+    // About 135 from the source (12 per byte), as a key seen from elsewhere, under the
+    // front end's match distance of 180; other entries lie about 295 away.
+    const Descriptor query = noisy_copy(stored[target], random, 20);
+    found_by_gap += by_gap.nearest(query).entry == target ? 1 : 0;
+    found_by_box += by_box.nearest(query, 180 * 180).entry == target ? 1 : 0;
+  }
+  EXPECT_GT(found_by_box, found_by_gap) << "box " << found_by_box << ", largest gap " << found_by_gap;
+  EXPECT_GE(found_by_box, 500 * 80 / 100) << found_by_box;
+  EXPECT_LE(by_box.stats().leaves_checked, by_box.stats().lookups * 64U);
+}
+
 TEST(DescriptorIndex, CandidateBecomesLandmarkAfterEnoughFrames) {
   const std::vector<Descriptor> keys = random_set(2, 5);
   DescriptorIndex index(params(100, 64, 3));

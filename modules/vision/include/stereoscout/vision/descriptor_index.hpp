@@ -5,7 +5,9 @@
 // Structure: a KD-tree over byte descriptors with bucket leaves that split at the median of
 // their widest dimension when full, so entries are inserted one at a time. Search is
 // best-bin-first (Beis and Lowe): a bounded number of leaves is examined, nearest cell
-// first, which makes a lookup cost logarithmic in the number of entries. Every array (entries,
+// first, which makes a lookup cost logarithmic in the number of entries. A cell's distance is
+// either the largest gap in one dimension (as first built) or, with `box_distance`, the exact
+// distance to the cell's box, which orders the cells truly and lets the search stop early. Every array (entries,
 // nodes, leaf buckets, the search heap) is sized at construction; nothing allocates later.
 //
 // Identity: a key whose nearest entry lies within `match_distance` takes that entry. A key
@@ -20,6 +22,7 @@
 // the live entries in entry order. Everything is counted in DescriptorIndexStats. Ties are
 // broken by the smaller entry index, so results never depend on addresses.
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -35,6 +38,7 @@ struct DescriptorIndexParams {
   int max_leaf_checks = 64;
   double match_distance = 180.0;
   int candidate_min_frames = 3;
+  bool box_distance = false;  // vision.index_box_distance
 };
 
 DescriptorIndexParams index_params_from_config(const core::VisionConfig& vision);
@@ -82,8 +86,11 @@ class DescriptorIndex {
   // One key seen in frame `frame` (frames must not decrease). See the class comment.
   IndexLookup observe(const Descriptor& descriptor, std::uint64_t frame);
 
-  // Best-bin-first search without changing any entry (the stats count it).
-  IndexNeighbour nearest(const Descriptor& descriptor);
+  // Best-bin-first search without changing any entry (the stats count it). With
+  // box_distance, cells farther than `radius_squared` are not searched.
+  IndexNeighbour nearest(const Descriptor& descriptor, std::uint32_t radius_squared = kNoRadius);
+
+  static constexpr std::uint32_t kNoRadius = 0xFFFFFFFFU;
 
   // Changes the search bound (benchmarks, tests); capped by the heap sized at construction.
   void set_max_leaf_checks(int leaf_checks);
@@ -107,6 +114,7 @@ class DescriptorIndex {
   struct Node {
     std::uint32_t low = kNone;   // child for descriptor[dimension] < threshold; kNone: leaf
     std::uint32_t high = kNone;  // child for descriptor[dimension] >= threshold
+    std::uint32_t parent = kNone;
     std::uint16_t count = 0;     // entries in the bucket (leaves only)
     std::uint8_t dimension = 0;
     std::uint8_t threshold = 0;
@@ -115,6 +123,11 @@ class DescriptorIndex {
   struct HeapItem {
     std::uint32_t bound = 0;  // lower bound on the squared distance to the cell
     std::uint32_t node = 0;
+  };
+  // A cell of the tree: the byte range of every dimension (inclusive).
+  struct Cell {
+    std::array<std::uint8_t, kDescriptorLength> low;
+    std::array<std::uint8_t, kDescriptorLength> high;
   };
 
   std::uint32_t allocate_leaf();
@@ -132,6 +145,11 @@ class DescriptorIndex {
   void append_candidate(std::uint32_t entry);
   void heap_push(HeapItem item);
   HeapItem heap_pop();
+  IndexNeighbour nearest_by_largest_gap(const Descriptor& descriptor);
+  IndexNeighbour nearest_by_box_distance(const Descriptor& descriptor, std::uint32_t radius_squared);
+  void cell_of(std::uint32_t node, Cell& cell) const;
+  static void check_bucket(const std::uint32_t* members, std::size_t count, const Descriptor& descriptor,
+                           const std::vector<Descriptor>& descriptors, IndexNeighbour& best);
   std::uint32_t* bucket(std::uint32_t node) { return &buckets_[static_cast<std::size_t>(node) * bucket_size_]; }
   const std::uint32_t* bucket(std::uint32_t node) const {
     return &buckets_[static_cast<std::size_t>(node) * bucket_size_];
@@ -149,6 +167,7 @@ class DescriptorIndex {
   std::uint32_t root_ = 0;
   std::vector<HeapItem> heap_;            // sized once
   std::size_t heap_size_ = 0;
+  Cell search_cell_{};                    // the box search's current cell
   std::vector<std::uint8_t> split_scratch_;  // bucket_size + 1 values (median search)
   std::uint32_t oldest_candidate_ = kNone;
   std::uint32_t newest_candidate_ = kNone;

@@ -29,6 +29,7 @@ struct VisionConfig {
   // Descriptor index.
   double index_match_distance = 180.0;
   int index_bucket_size = 16;
+  bool index_box_distance = false;
   // Identities split by where their points lie (IdentityGate).
   bool identity_gate = false;
   int identity_gate_instances = 400000;
@@ -75,6 +76,7 @@ inline void describe(ConfigVisitor& v, VisionConfig& c) {
   v.boolean("sift_parallel", c.sift_parallel, "Run SIFT on the left and right image in two threads (results are identical to the sequential run).");
   v.number("index_match_distance", c.index_match_distance, {1.0, 1000.0, "", "Largest Euclidean distance between a key's descriptor and an index entry for the key to take that entry's identity (SIFT descriptors have norm 512)."});
   v.integer_field("index_bucket_size", c.index_bucket_size, {2, 256, "", "Descriptors in one KD-tree leaf before it splits."});
+  v.boolean("index_box_distance", c.index_box_distance, "Best-bin-first search orders the tree's cells by their exact distance from the key (over every dimension the path to the cell splits), and stops at the match distance, where no entry can match. Off: by the largest gap in any one dimension, a looser bound under which the leaf budget runs out before the nearest entry of a re-observed key is found far more often (vision_bench BM_IndexLookup, docs/results.md).");
   v.boolean("identity_gate", c.identity_gate, "Split the index's identities by where their points lie in the odometry frame: a key whose point agrees with none of its identity's places (the filter's association gate, with the odometry's drift since, from the filter's linear motion-noise terms) becomes a landmark of its own. A look that repeats (floor tiles, a texture on several walls) otherwise names one landmark in many places. Off by default: the drift widens the gate over long drives, and with it the office's coverage fell (docs/results.md).");
   v.integer_field("identity_gate_instances", c.identity_gate_instances, {1, 10000000, "", "Landmarks the identity gate can make in all (each identity's places); when they run out, keys that need a new one are dropped (counted)."});
   v.integer_field("identity_gate_instances_per_identity", c.identity_gate_instances_per_identity, {1, 1024, "", "Places one index identity may name; a key of an identity with this many, agreeing with none, is dropped (counted)."});
