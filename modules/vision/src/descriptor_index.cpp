@@ -219,11 +219,11 @@ IndexNeighbour DescriptorIndex::nearest(const Descriptor& descriptor, std::uint3
   return params_.box_distance ? nearest_by_box_distance(descriptor, radius_squared) : nearest_by_largest_gap(descriptor);
 }
 
-void DescriptorIndex::check_bucket(const std::uint32_t* members, std::size_t count, const Descriptor& descriptor,
-                                   const std::vector<Descriptor>& descriptors, IndexNeighbour& best) {
-  for (std::size_t i = 0; i < count; ++i) {
+void DescriptorIndex::check_leaf(std::uint32_t leaf, const Descriptor& descriptor, IndexNeighbour& best) const {
+  const std::uint32_t* members = bucket(leaf);
+  for (std::size_t i = 0; i < nodes_[leaf].count; ++i) {
     const std::uint32_t entry = members[i];
-    const std::uint32_t distance = descriptor_distance_squared(descriptor, descriptors[entry]);
+    const std::uint32_t distance = descriptor_distance_squared(descriptor, descriptors_[entry]);
     if (!best.found || distance < best.distance_squared || (distance == best.distance_squared && entry < best.entry)) {
       best = {true, entry, distance};
     }
@@ -254,7 +254,7 @@ IndexNeighbour DescriptorIndex::nearest_by_largest_gap(const Descriptor& descrip
       node = go_low ? split.low : split.high;
     }
     ++leaves_checked;
-    check_bucket(bucket(node), nodes_[node].count, descriptor, descriptors_, best);
+    check_leaf(node, descriptor, best);
   }
   stats_.leaves_checked += static_cast<std::uint64_t>(leaves_checked);
   return best;
@@ -280,7 +280,7 @@ void DescriptorIndex::cell_of(std::uint32_t node, Cell& cell) const {
 // down, the far side of a split differs from the near side in one dimension only, so its
 // squared distance is the near side's with that dimension's gap replaced. With exact bounds
 // the search stops as soon as the nearest cell left is farther than the best entry or the
-// radius, which a re-observed key's neighbourhood usually allows well within the budget.
+// radius (how soon depends on how few dimensions the descriptors really spread over).
 IndexNeighbour DescriptorIndex::nearest_by_box_distance(const Descriptor& descriptor, std::uint32_t radius_squared) {
   IndexNeighbour best;
   heap_size_ = 0;
@@ -317,7 +317,7 @@ IndexNeighbour DescriptorIndex::nearest_by_box_distance(const Descriptor& descri
       }
     }
     ++leaves_checked;
-    check_bucket(bucket(node), nodes_[node].count, descriptor, descriptors_, best);
+    check_leaf(node, descriptor, best);
   }
   stats_.leaves_checked += static_cast<std::uint64_t>(leaves_checked);
   return best;

@@ -230,22 +230,26 @@ TEST(DescriptorIndex, FullIndexEvictsStaleCandidatesNeverLandmarks) {
 
 TEST(DescriptorIndex, ChurnRebuildsTreeWithoutAllocatingOrLosingEntries) {
   const std::vector<Descriptor> keys = random_set(6000, 7);
-  DescriptorIndexParams p = params(256, 100000, 2);
-  p.bucket_size = 4;
-  DescriptorIndex index(p);
-  const core::AllocationScope scope;
-  for (std::size_t i = 0; i < keys.size(); ++i) {
-    index.observe(keys[i], i);  // every key a fresh candidate in its own frame: constant eviction
-  }
-  EXPECT_EQ(scope.allocations(), 0U);
-  EXPECT_EQ(index.size(), 256U);
-  EXPECT_EQ(index.stats().evicted, keys.size() - 256U);
-  EXPECT_GT(index.stats().rebuilds, 0U);
-  // The 256 newest keys are all still found exactly.
-  for (std::size_t i = keys.size() - 256; i < keys.size(); ++i) {
-    const IndexNeighbour neighbour = index.nearest(keys[i]);
-    ASSERT_TRUE(neighbour.found);
-    EXPECT_EQ(neighbour.distance_squared, 0U);
+  for (const bool box_distance : {false, true}) {
+    SCOPED_TRACE(box_distance ? "box distance" : "largest gap");
+    DescriptorIndexParams p = params(256, 100000, 2);
+    p.bucket_size = 4;
+    p.box_distance = box_distance;  // its cells come from the parents, which rebuilds renew
+    DescriptorIndex index(p);
+    const core::AllocationScope scope;
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      index.observe(keys[i], i);  // every key a fresh candidate in its own frame: constant eviction
+    }
+    EXPECT_EQ(scope.allocations(), 0U);
+    EXPECT_EQ(index.size(), 256U);
+    EXPECT_EQ(index.stats().evicted, keys.size() - 256U);
+    EXPECT_GT(index.stats().rebuilds, 0U);
+    // The 256 newest keys are all still found exactly.
+    for (std::size_t i = keys.size() - 256; i < keys.size(); ++i) {
+      const IndexNeighbour neighbour = index.nearest(keys[i]);
+      ASSERT_TRUE(neighbour.found);
+      EXPECT_EQ(neighbour.distance_squared, 0U);
+    }
   }
 }
 

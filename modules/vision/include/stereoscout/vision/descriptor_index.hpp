@@ -7,8 +7,9 @@
 // best-bin-first (Beis and Lowe): a bounded number of leaves is examined, nearest cell
 // first, which makes a lookup cost logarithmic in the number of entries. A cell's distance is
 // either the largest gap in one dimension (as first built) or, with `box_distance`, the exact
-// distance to the cell's box, which orders the cells truly and lets the search stop early. Every array (entries,
-// nodes, leaf buckets, the search heap) is sized at construction; nothing allocates later.
+// distance to the cell's box, which orders the cells truly and lets the search stop early.
+// Every array (entries, nodes, leaf buckets, the search heap) is sized at construction;
+// nothing allocates later.
 //
 // Identity: a key whose nearest entry lies within `match_distance` takes that entry. A key
 // with no such entry becomes a new *candidate*; a candidate is handed to the filter (gets a
@@ -148,8 +149,7 @@ class DescriptorIndex {
   IndexNeighbour nearest_by_largest_gap(const Descriptor& descriptor);
   IndexNeighbour nearest_by_box_distance(const Descriptor& descriptor, std::uint32_t radius_squared);
   void cell_of(std::uint32_t node, Cell& cell) const;
-  static void check_bucket(const std::uint32_t* members, std::size_t count, const Descriptor& descriptor,
-                           const std::vector<Descriptor>& descriptors, IndexNeighbour& best);
+  void check_leaf(std::uint32_t leaf, const Descriptor& descriptor, IndexNeighbour& best) const;
   std::uint32_t* bucket(std::uint32_t node) { return &buckets_[static_cast<std::size_t>(node) * bucket_size_]; }
   const std::uint32_t* bucket(std::uint32_t node) const {
     return &buckets_[static_cast<std::size_t>(node) * bucket_size_];
