@@ -124,6 +124,33 @@ TEST(DescriptorIndex, BoxDistanceGivesTheExactNearestNeighbour) {
   }
 }
 
+TEST(DescriptorIndex, BoxDistanceIsExactWhereItsBoundsPrune) {
+  // Descriptors spread over 4 dimensions only: the cells' bounds become tight, so a wrong
+  // bound would cut off the nearest entry, and the search must end long before every leaf.
+  core::RandomStream random(10, core::StreamId{0, 0, 0});
+  std::vector<Descriptor> stored(3000);
+  for (Descriptor& d : stored) {
+    d.fill(0);
+    for (std::size_t k = 0; k < 4; ++k) d[k] = static_cast<std::uint8_t>(random.uniform_index(256));
+  }
+  DescriptorIndexParams p = box_params(4000, 100000);
+  p.match_distance = 1.0;  // near neighbours in 4 dimensions: every key must be stored
+  DescriptorIndex index(p);
+  for (std::size_t i = 0; i < stored.size(); ++i) {
+    index.observe(stored[i], i);
+  }
+  ASSERT_EQ(index.size(), stored.size());
+  const std::uint64_t leaves_before = index.stats().leaves_checked;
+  for (int q = 0; q < 100; ++q) {
+    Descriptor query{};
+    for (std::size_t k = 0; k < 4; ++k) query[k] = static_cast<std::uint8_t>(random.uniform_index(256));
+    const IndexNeighbour found = index.nearest(query);
+    ASSERT_TRUE(found.found);
+    EXPECT_EQ(found.distance_squared, descriptor_distance_squared(query, stored[brute_force_nearest(stored, query)]));
+  }
+  EXPECT_LT(index.stats().leaves_checked - leaves_before, 100U * 20U);  // of about 250 leaves
+}
+
 TEST(DescriptorIndex, BoxDistanceSearchStopsAtTheMatchDistance) {
   const std::vector<Descriptor> stored = random_set(3000, 1);
   DescriptorIndex by_gap(params(4000, 100000, 1));
@@ -249,6 +276,14 @@ TEST(DescriptorIndex, ChurnRebuildsTreeWithoutAllocatingOrLosingEntries) {
       const IndexNeighbour neighbour = index.nearest(keys[i]);
       ASSERT_TRUE(neighbour.found);
       EXPECT_EQ(neighbour.distance_squared, 0U);
+    }
+    // Keys that match none exactly get the true nearest too: the box distance's cells, rebuilt
+    // from the parent links, must still bound the entries after the rebuilds.
+    const std::vector<Descriptor> live(keys.end() - 256, keys.end());
+    for (const Descriptor& query : random_set(50, 9)) {
+      const IndexNeighbour neighbour = index.nearest(query);
+      ASSERT_TRUE(neighbour.found);
+      EXPECT_EQ(neighbour.distance_squared, descriptor_distance_squared(query, live[brute_force_nearest(live, query)]));
     }
   }
 }
