@@ -9,6 +9,7 @@
 
 #include "map_eval.hpp"
 #include "map_png.hpp"
+#include "stereoscout/core/geometry.hpp"
 #include "stereoscout/host_sim/ground_truth.hpp"
 #include "stereoscout/occupancy/final_map.hpp"
 #include "stereoscout/occupancy/ros_map.hpp"
@@ -332,6 +333,12 @@ void write_counters(report::JsonWriter& json, const stack::Stack& stack) {
       .unsigned_integer("estimate_lineage_switches", f.estimate_lineage_switches)
       .unsigned_integer("estimate_switch_depth_sum", f.estimate_switch_depth_sum)
       .unsigned_integer("estimate_switch_depth_max", f.estimate_switch_depth_max)
+      .unsigned_integer("manhattan_walls_learnt", f.manhattan_walls_learnt)
+      .unsigned_integer("manhattan_walls_used", f.manhattan_walls_used)
+      .unsigned_integer("manhattan_walls_off_axes", f.manhattan_walls_off_axes)
+      .boolean("manhattan_axes_fixed", stack.filter().manhattan_frame().fixed())
+      .number("manhattan_axis_deg", core::radians_to_degrees(stack.filter().manhattan_frame().axis_rad()))
+      .unsigned_integer("manhattan_restarts", stack.filter().manhattan_frame().restarts())
       .end_object();
 }
 

@@ -42,7 +42,8 @@ ParticleFilter::ParticleFilter(const core::FilterConfig& config, const core::Cam
       particles_(&particles_a_),
       spare_(&particles_b_),
       observations_(to_size(config.max_observations_per_update)),
-      scratch_weights_(to_size(config.particle_capacity)) {
+      scratch_weights_(to_size(config.particle_capacity)),
+      manhattan_frame_(config.manhattan_frame_walls) {
   STEREOSCOUT_CHECK(config.particles >= 1 && config.particles <= config.particle_capacity,
                     "filter.particles must be in [1, particle_capacity]");
   start(core::OdometryReading{});
@@ -77,6 +78,7 @@ void ParticleFilter::start(const core::OdometryReading& odometry, const core::Po
     particles_->push_back(p);
   }
   last_odometry_ = odometry.pose;
+  manhattan_frame_.reset();
   update_index_ = 1;  // the root is update 0
   ml_slot_ = 0;
   set_estimate(root);
@@ -103,12 +105,12 @@ void ParticleFilter::start(const core::OdometryReading& odometry, const core::Po
 }
 
 UpdateResult ParticleFilter::update(const core::OdometryReading& odometry, ObservationList observations,
-                                    double pan_rad) {
-  return update(odometry, observations, core::robot_from_camera(camera_mount_, pan_rad));
+                                    double pan_rad, const WallLine* wall) {
+  return update(odometry, observations, core::robot_from_camera(camera_mount_, pan_rad), wall);
 }
 
 UpdateResult ParticleFilter::update(const core::OdometryReading& odometry, ObservationList observations,
-                                    const Eigen::Isometry3d& robot_from_sensor) {
+                                    const Eigen::Isometry3d& robot_from_sensor, const WallLine* wall) {
   UpdateResult result;
   if (trajectory_.available() < particles_->size()) {
     // Defined degradation: no update; the odometry motion carries over to the next one.
@@ -119,6 +121,7 @@ UpdateResult ParticleFilter::update(const core::OdometryReading& odometry, Obser
   }
   predict(last_odometry_.between(odometry.pose));
   last_odometry_ = odometry.pose;
+  if (wall != nullptr && config_.manhattan_heading_sigma_deg > 0.0) weigh_by_wall(*wall);
   const std::size_t used = prepare_observations(observations, robot_from_sensor);
   const double weight_scale = observation_weight_scale(used);
   for (Particle& p : *particles_) {
@@ -141,6 +144,30 @@ UpdateResult ParticleFilter::update(const core::OdometryReading& odometry, Obser
   ++update_index_;
   ++counters_.updates;
   return result;
+}
+
+// The wall's direction in the map frame is the particle's heading plus its direction in the
+// robot frame; a right heading puts it on one of the building's axes. The weighted mean
+// heading decides whether the wall is one of the building's at all, so that a slanted box
+// weighs nobody.
+void ParticleFilter::weigh_by_wall(const WallLine& wall) {
+  const double mean_heading = weighted_mean_pose().theta;
+  if (!manhattan_frame_.fixed()) {
+    manhattan_frame_.learn(mean_heading + wall.direction_rad);
+    ++counters_.manhattan_walls_learnt;
+    return;
+  }
+  if (std::abs(manhattan_frame_.offset(mean_heading + wall.direction_rad)) >
+      core::degrees_to_radians(config_.manhattan_gate_deg)) {
+    ++counters_.manhattan_walls_off_axes;
+    return;
+  }
+  ++counters_.manhattan_walls_used;
+  const double sigma = core::degrees_to_radians(config_.manhattan_heading_sigma_deg);
+  for (Particle& p : *particles_) {
+    const double offset = manhattan_frame_.offset(p.pose.theta + wall.direction_rad) / sigma;
+    p.log_weight -= 0.5 * offset * offset;
+  }
 }
 
 void ParticleFilter::predict(const core::Pose2& motion) {

@@ -37,6 +37,7 @@ core::FilterConfig filter_config_for(const core::FilterConfig& config, Localizat
   single.motion_noise_translation_per_rad = 0.0;
   single.landmark_node_capacity = 64;
   single.landmark_estimate_capacity = 64;
+  single.manhattan_heading_sigma_deg = 0.0;  // one particle: nothing to weigh
   return single;
 }
 
@@ -116,6 +117,7 @@ Stack::Stack(const core::SystemConfig& config, const StackOptions& options, cons
   }
   vision_->allocate_scan(scan_);
   vision_->allocate_scan(seen_scan_);
+  wall_params_ = slam::wall_line_params_from_config(config.filter);
   filter_ = std::make_unique<slam::ParticleFilter>(filter_config_for(config.filter, options.localization), mount_,
                                                    static_cast<std::uint64_t>(config.run.seed));
   capture_frame_.allocate(config.camera.width_px, config.camera.height_px);
@@ -382,8 +384,11 @@ core::Status Stack::observation_update() {
     }
   }
   if (!vision_->scan(kept_frame_, scan_).ok()) ++counters_.vision_failures;
-  const slam::UpdateResult result =
-      filter_->update(at_frame, slam::ObservationList{observations_.data(), observations_.size()}, kept_frame_.pan_rad);
+  slam::WallLine wall;
+  const bool wall_seen = filter_->config().manhattan_heading_sigma_deg > 0.0 && slam::fit_wall_line(scan_, wall_params_, wall);
+  const slam::UpdateResult result = filter_->update(
+      at_frame, slam::ObservationList{observations_.data(), observations_.size()}, kept_frame_.pan_rad,
+      wall_seen ? &wall : nullptr);
   if (!result.status.ok()) {
     ++counters_.updates_refused;  // the filter carries the motion over to the next update
     return result.status;

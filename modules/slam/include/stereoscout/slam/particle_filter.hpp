@@ -10,6 +10,9 @@
 //      the weight gains the observation's log-likelihood (eq. 7 in log space, floored; the
 //      sum scaled down when there are more than filter.independent_observations);
 //   3. ancestry: every particle gets a trajectory node (pose, time, update index);
+//   3a. with filter.manhattan_heading_sigma_deg, the update's wall (wall_line.hpp), if any,
+//      weighs every particle by how far its heading puts the wall from the building's axes
+//      (manhattan_frame.hpp); until the axes are learnt the wall only teaches them;
 //   4. resampling: systematic, when the effective sample size falls below the configured
 //      fraction, with the stream (seed, {resampling, update_index, 0}).
 // All memory is reserved in the constructor; update() does not touch the heap.
@@ -25,9 +28,11 @@
 #include "stereoscout/core/messages.hpp"
 #include "stereoscout/core/status.hpp"
 #include "stereoscout/slam/landmark_map.hpp"
+#include "stereoscout/slam/manhattan_frame.hpp"
 #include "stereoscout/slam/motion_model.hpp"
 #include "stereoscout/slam/observation_model.hpp"
 #include "stereoscout/slam/trajectory_tree.hpp"
+#include "stereoscout/slam/wall_line.hpp"
 
 namespace stereoscout::slam {
 
@@ -68,6 +73,11 @@ struct FilterCounters {
   std::uint64_t estimate_lineage_switches = 0;
   std::uint64_t estimate_switch_depth_sum = 0;
   std::uint64_t estimate_switch_depth_max = 0;
+  // Walls handed to update() (filter.manhattan_heading_sigma_deg): learnt into the building's
+  // axes, used to weigh the particles, or too far off the axes to be one of the building's.
+  std::uint64_t manhattan_walls_learnt = 0;
+  std::uint64_t manhattan_walls_used = 0;
+  std::uint64_t manhattan_walls_off_axes = 0;
 };
 
 struct UpdateResult {
@@ -93,12 +103,14 @@ class ParticleFilter {
              std::size_t prior_count);
 
   // One update with stereo observations in the camera's optical frame, the camera on the
-  // configured mount turned by `pan_rad`.
-  UpdateResult update(const core::OdometryReading& odometry, ObservationList observations, double pan_rad);
+  // configured mount turned by `pan_rad`; `wall`: the straightest wall of the same moment's
+  // scan, or null (used only with filter.manhattan_heading_sigma_deg).
+  UpdateResult update(const core::OdometryReading& odometry, ObservationList observations, double pan_rad,
+                      const WallLine* wall = nullptr);
   // The same for any sensor: observations are points in the frame `robot_from_sensor` maps
   // into the robot frame (identity for a sensor at the robot's centre, as in MRCLAM).
   UpdateResult update(const core::OdometryReading& odometry, ObservationList observations,
-                      const Eigen::Isometry3d& robot_from_sensor);
+                      const Eigen::Isometry3d& robot_from_sensor, const WallLine* wall = nullptr);
 
   std::size_t particle_count() const { return particles_->size(); }
   const Particle& particle(std::size_t slot) const { return (*particles_)[slot]; }
@@ -126,6 +138,7 @@ class ParticleFilter {
   const TrajectoryTree& trajectory() const { return trajectory_; }
   const FilterCounters& counters() const { return counters_; }
   const core::FilterConfig& config() const { return config_; }
+  const ManhattanFrame& manhattan_frame() const { return manhattan_frame_; }
 
  private:
   void release_particles(core::FixedVector<Particle>& particles);
@@ -133,6 +146,8 @@ class ParticleFilter {
   std::size_t prepare_observations(ObservationList observations, const Eigen::Isometry3d& robot_from_sensor);
   // What one update's summed log-likelihoods are scaled by (filter.independent_observations).
   double observation_weight_scale(std::size_t used);
+  // Step 3a: learns the building's axes from `wall`, or weighs the particles by it.
+  void weigh_by_wall(const WallLine& wall);
   double observe(Particle& particle, const PlanarTransform& map_from_robot, const RobotFrameObservation& observation);
   void extend_trajectories(std::int64_t timestamp_ns);
   void normalise_weights();
@@ -160,6 +175,7 @@ class ParticleFilter {
   std::uint32_t update_index_ = 0;
   std::size_t ml_slot_ = 0;
   TrajectoryNodeHandle estimate_node_;  // retained
+  ManhattanFrame manhattan_frame_;
   FilterCounters counters_;
 };
 

@@ -217,6 +217,7 @@ class Stack {
   core::FixedVector<core::LandmarkObservation> observations_;
   core::FixedVector<slam::TrajectoryNodeHandle> live_nodes_;
   core::DepthScan scan_;
+  slam::WallLineParams wall_params_;  // filter.manhattan_*: the scan's wall for the filter
   std::vector<Eigen::Vector2d> seen_obstacles_;  // sized once: the last scan's obstacles at camera height, map frame
   explore::SeenObstacles seen_;                    // the used part of it
   core::DepthScan seen_scan_;  // the last update's scan, for seen_ (scan_ is overwritten by a refused update too)

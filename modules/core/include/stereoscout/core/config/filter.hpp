@@ -25,6 +25,13 @@ struct FilterConfig {
   int export_min_observations = 4;
   double estimate_lineage_margin = 0.0;
   int independent_observations = 0;
+  double manhattan_heading_sigma_deg = 0.0;
+  double manhattan_gate_deg = 10.0;
+  int manhattan_frame_walls = 5;
+  double manhattan_wall_min_length_m = 1.0;
+  double manhattan_wall_max_range_m = 3.0;
+  double manhattan_wall_max_rms_m = 0.03;
+  double manhattan_wall_max_gap_m = 0.15;
 };
 
 inline void describe(ConfigVisitor& v, FilterConfig& c) {
@@ -49,6 +56,13 @@ inline void describe(ConfigVisitor& v, FilterConfig& c) {
   v.integer_field("export_min_observations", c.export_min_observations, {1, 1000000, "", "An estimate goes into landmarks.ply once it has fused this many observations (4: seen more than 3 times)."});
   v.number("estimate_lineage_margin", c.estimate_lineage_margin, {0.0, 100.0, "", "The particle the grid and the explorer follow (the estimate) stays on the lineage it followed while a particle descending from it has a log-weight within this of the best; otherwise, and at 0, it is the ML particle (paper V). The ML particle after a resampling is the one whose single update was likeliest, often of another lineage a few centimetres away, and the grid follows it: a wall held, then a gap. Counted either way in report.json's filter.estimate_lineage_switches. At 10, four changes in five fewer and half the grids held, but no better coverage or fewer contacts on eight runs (docs/results.md), so 0."});
   v.integer_field("independent_observations", c.independent_observations, {0, 100000, "", "An update with more observations than this weighs its particles as if it had this many: the sum of their log-likelihoods is scaled by this number over theirs. Eq. 7 takes the observations of one frame as independent, but their errors share the frame's (the stereo calibration, the pose they were seen from), and 200 of them weighed as independent leave one particle of 1000 at each update, the cloud narrower than the estimate's error. Every observation still updates its landmark. 0: every observation independent (paper eq. 7). At 30 office seed 1 kept its pose, but the coverage fell on all six office seeds (docs/results.md), so 0."});
+  v.number("manhattan_heading_sigma_deg", c.manhattan_heading_sigma_deg, {0.0, 90.0, "deg", "Assume the building's walls meet at right angles (a Manhattan world) and weigh every particle by how far the straightest wall of the update's obstacle scan, turned by the particle's heading, lies from the nearest of the building's axes: a Gaussian of this standard deviation. It bounds the heading's drift where no landmark is in view (turning in front of blank walls) without a gyro. The axes are learnt from the first manhattan_frame_walls walls. Not in the paper. 0: off."});
+  v.number("manhattan_gate_deg", c.manhattan_gate_deg, {0.0, 45.0, "deg", "A wall further than this from the nearest axis at the estimate's heading is not one of the building's (a slanted box, a wall off the grid): not used, counted in report.json's filter.manhattan_walls_off_axes."});
+  v.integer_field("manhattan_frame_walls", c.manhattan_frame_walls, {1, 100000, "", "Walls from the start (at the estimate's heading, still exact there) whose circular mean modulo 90 degrees fixes the building's axes; when they do not agree (resultant below 0.9) the count starts again."});
+  v.number("manhattan_wall_min_length_m", c.manhattan_wall_min_length_m, {0.1, 20.0, "m", "Shortest straight run of scan points taken for a wall."});
+  v.number("manhattan_wall_max_range_m", c.manhattan_wall_max_range_m, {0.5, 20.0, "m", "Scan points farther than this from the camera are left out of the wall fit (stereo's range error grows with the square of the range)."});
+  v.number("manhattan_wall_max_rms_m", c.manhattan_wall_max_rms_m, {0.001, 1.0, "m", "Largest root-mean-square distance of a wall's points from its fitted line; a run is split at its point farthest from its chord while that lies more than three times this off."});
+  v.number("manhattan_wall_max_gap_m", c.manhattan_wall_max_gap_m, {0.01, 5.0, "m", "Neighbouring scan columns farther apart than this end a run of wall points."});
   v.require(c.particles <= c.particle_capacity, "particles", "must not exceed particle_capacity");
   v.end_section();
 }

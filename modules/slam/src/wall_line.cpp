@@ -1,0 +1,156 @@
+#include "stereoscout/slam/wall_line.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+
+#include "stereoscout/core/geometry.hpp"
+
+namespace stereoscout::slam {
+namespace {
+
+using Column = core::DepthScanColumn;
+
+// A piece of a run: columns [first, last], both obstacle columns.
+struct Piece {
+  std::size_t first = 0;
+  std::size_t last = 0;
+};
+
+// Pieces waiting to be split or fitted; a run of 640 columns splits into far fewer.
+constexpr std::size_t kMaxPieces = 64;
+// A piece is split while a point lies more than this many times max_rms_m off its chord.
+constexpr double kSplitFactor = 3.0;
+
+double dx(const Column& a, const Column& b) { return static_cast<double>(b.x_robot_m) - a.x_robot_m; }
+double dy(const Column& a, const Column& b) { return static_cast<double>(b.y_robot_m) - a.y_robot_m; }
+
+bool usable(const core::DepthScan& scan, std::size_t i, double max_range_m) {
+  const Column& c = scan.columns[i];
+  if (c.kind != Column::Kind::obstacle) return false;
+  return std::hypot(c.x_robot_m - scan.origin_robot.x(), c.y_robot_m - scan.origin_robot.y()) <= max_range_m;
+}
+
+// The column of `piece` farthest from its chord, and that distance.
+std::size_t farthest_from_chord(const core::DepthScan& scan, const Piece& piece, double& distance) {
+  const Column& a = scan.columns[piece.first];
+  const Column& b = scan.columns[piece.last];
+  const double length = std::hypot(dx(a, b), dy(a, b));
+  distance = 0.0;
+  std::size_t farthest = piece.first;
+  for (std::size_t i = piece.first + 1; i < piece.last; ++i) {
+    const Column& c = scan.columns[i];
+    const double d = length > 0.0 ? std::abs(dx(a, b) * dy(a, c) - dy(a, b) * dx(a, c)) / length
+                                   : std::hypot(dx(a, c), dy(a, c));
+    if (d > distance) {
+      distance = d;
+      farthest = i;
+    }
+  }
+  return farthest;
+}
+
+// Total least squares over the piece's points; false when it does not pass as a wall.
+bool fit_piece(const core::DepthScan& scan, const Piece& piece, const WallLineParams& params, WallLine& line) {
+  const int count = static_cast<int>(piece.last - piece.first + 1);
+  if (count < params.min_points) return false;
+  double mean_x = 0.0;
+  double mean_y = 0.0;
+  for (std::size_t i = piece.first; i <= piece.last; ++i) {
+    mean_x += scan.columns[i].x_robot_m;
+    mean_y += scan.columns[i].y_robot_m;
+  }
+  mean_x /= count;
+  mean_y /= count;
+  double sxx = 0.0;
+  double sxy = 0.0;
+  double syy = 0.0;
+  for (std::size_t i = piece.first; i <= piece.last; ++i) {
+    const double x = scan.columns[i].x_robot_m - mean_x;
+    const double y = scan.columns[i].y_robot_m - mean_y;
+    sxx += x * x;
+    sxy += x * y;
+    syy += y * y;
+  }
+  const double direction = 0.5 * std::atan2(2.0 * sxy, sxx - syy);
+  const double ux = std::cos(direction);
+  const double uy = std::sin(direction);
+  double along_min = 0.0;
+  double along_max = 0.0;
+  double across_squared = 0.0;
+  for (std::size_t i = piece.first; i <= piece.last; ++i) {
+    const double x = scan.columns[i].x_robot_m - mean_x;
+    const double y = scan.columns[i].y_robot_m - mean_y;
+    const double along = x * ux + y * uy;
+    const double across = -x * uy + y * ux;
+    along_min = std::min(along_min, along);
+    along_max = std::max(along_max, along);
+    across_squared += across * across;
+  }
+  const double rms = std::sqrt(across_squared / count);
+  const double length = along_max - along_min;
+  if (rms > params.max_rms_m || length < params.min_length_m) return false;
+  line.direction_rad = direction < 0.0 ? direction + core::kPi : direction;
+  line.length_m = length;
+  line.rms_m = rms;
+  line.points = count;
+  return true;
+}
+
+// Splits one run into pieces and keeps the longest wall among them in `best`.
+void fit_run(const core::DepthScan& scan, Piece run, const WallLineParams& params, WallLine& best, bool& found) {
+  std::array<Piece, kMaxPieces> pending{};
+  std::size_t waiting = 0;
+  pending[waiting++] = run;
+  while (waiting > 0) {
+    const Piece piece = pending[--waiting];
+    if (static_cast<int>(piece.last - piece.first + 1) < params.min_points) continue;
+    double distance = 0.0;
+    const std::size_t split = farthest_from_chord(scan, piece, distance);
+    if (distance > kSplitFactor * params.max_rms_m && waiting + 2 <= kMaxPieces) {
+      pending[waiting++] = Piece{piece.first, split};
+      pending[waiting++] = Piece{split, piece.last};
+      continue;
+    }
+    WallLine line;
+    if (fit_piece(scan, piece, params, line) && (!found || line.length_m > best.length_m)) {
+      best = line;
+      found = true;
+    }
+  }
+}
+
+}  // namespace
+
+WallLineParams wall_line_params_from_config(const core::FilterConfig& config) {
+  WallLineParams params;
+  params.min_length_m = config.manhattan_wall_min_length_m;
+  params.max_range_m = config.manhattan_wall_max_range_m;
+  params.max_rms_m = config.manhattan_wall_max_rms_m;
+  params.max_gap_m = config.manhattan_wall_max_gap_m;
+  return params;
+}
+
+bool fit_wall_line(const core::DepthScan& scan, const WallLineParams& params, WallLine& line) {
+  bool found = false;
+  const std::size_t n = scan.columns.size();
+  std::size_t i = 0;
+  while (i < n) {
+    if (!usable(scan, i, params.max_range_m)) {
+      ++i;
+      continue;
+    }
+    Piece run{i, i};
+    while (run.last + 1 < n && usable(scan, run.last + 1, params.max_range_m) &&
+           std::hypot(dx(scan.columns[run.last], scan.columns[run.last + 1]),
+                      dy(scan.columns[run.last], scan.columns[run.last + 1])) <= params.max_gap_m) {
+      ++run.last;
+    }
+    fit_run(scan, run, params, line, found);
+    i = run.last + 1;
+  }
+  return found;
+}
+
+}  // namespace stereoscout::slam
