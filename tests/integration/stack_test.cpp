@@ -68,6 +68,9 @@ class StackRun : public ::testing::Test {
     text << file.rdbuf();
     return text.str();
   }
+  // Replays the run in `live` and checks that it gives the live run's output files (all but
+  // the log it reads).
+  void expect_replay_gives_the_outputs_of(const std::string& live);
 
   fs::path dir_;
 };
@@ -98,6 +101,14 @@ double report_number(const std::string& report, const std::string& key) {
   const std::string rest = report.substr(at + key.size() + 4, 32);
   if (rest.compare(0, 4, "null") == 0) return -1.0;
   return std::stod(rest);
+}
+
+void StackRun::expect_replay_gives_the_outputs_of(const std::string& live) {
+  const test::CommandResult replayed = replay(dir_ / live / "sensors.log", "replay");
+  ASSERT_EQ(replayed.exit_code, 0) << replayed.output;
+  std::map<std::string, std::string> expected = output_digests(report(live));
+  expected.erase("sensors.log");
+  EXPECT_EQ(output_digests(report("replay")), expected);
 }
 
 TEST_F(StackRun, SameSeedSameOutputsNoHeapInLoopAndEveryReportKey) {
@@ -186,11 +197,7 @@ TEST_F(StackRun, ARunLongerThanTheScanRingKeepsItsWholeFinalMap) {
   EXPECT_EQ(report_number(a, "scans_from_ring"), 4.0) << a;
   EXPECT_EQ(report_number(a, "scans_missing"), 0.0) << a;
   EXPECT_NE(a.find("\"archive_on_final_lineage\": true"), std::string::npos) << a;
-  const test::CommandResult replayed = replay(dir_ / "live" / "sensors.log", "replay");
-  ASSERT_EQ(replayed.exit_code, 0) << replayed.output;
-  std::map<std::string, std::string> expected = output_digests(a);
-  expected.erase("sensors.log");
-  EXPECT_EQ(output_digests(report("replay")), expected);
+  expect_replay_gives_the_outputs_of("live");
 }
 
 // With filter.estimate_lineage_margin the grid and the explorer follow one particle lineage
@@ -210,11 +217,7 @@ TEST_F(StackRun, WithALineageMarginTheGridChangesLineageLessOftenAndReplaysTheSa
   EXPECT_GE(kept_switches, 0.0) << kept;
   EXPECT_LT(kept_switches, ml_switches);
   EXPECT_EQ(report_number(kept, "heap_allocations_in_loop"), 0.0) << kept;
-  const test::CommandResult replayed = replay(dir_ / "live" / "sensors.log", "replay");
-  ASSERT_EQ(replayed.exit_code, 0) << replayed.output;
-  std::map<std::string, std::string> expected = output_digests(kept);
-  expected.erase("sensors.log");
-  EXPECT_EQ(output_digests(report("replay")), expected);
+  expect_replay_gives_the_outputs_of("live");
 }
 
 // vision.identity_gate: the index's identities split by place. The keys the simulator's truth
@@ -234,11 +237,7 @@ TEST_F(StackRun, WithTheIdentityGateFewerReobservationsLandElsewhereAndTheRunRep
   EXPECT_GT(report_number(gated, "reobservation_consistency"), report_number(plain, "reobservation_consistency"))
       << plain << gated;
   EXPECT_EQ(report_number(gated, "heap_allocations_in_loop"), 0.0) << gated;
-  const test::CommandResult replayed = replay(dir_ / "live" / "sensors.log", "replay");
-  ASSERT_EQ(replayed.exit_code, 0) << replayed.output;
-  std::map<std::string, std::string> expected = output_digests(gated);
-  expected.erase("sensors.log");
-  EXPECT_EQ(output_digests(report("replay")), expected);
+  expect_replay_gives_the_outputs_of("live");
 }
 
 // filter.manhattan_heading_sigma_deg: the scan's walls learn the two rooms' axes (those of
@@ -256,11 +255,7 @@ TEST_F(StackRun, WithTheBuildingsAxesTheWallsLearnThemAndTheRunReplaysTheSame) {
   EXPECT_GT(report_number(axes, "manhattan_walls_used"), 0.0) << axes;
   EXPECT_NEAR(report_number(axes, "manhattan_axis_deg"), 0.0, 1.0) << axes;
   EXPECT_EQ(report_number(axes, "heap_allocations_in_loop"), 0.0) << axes;
-  const test::CommandResult replayed = replay(dir_ / "live" / "sensors.log", "replay");
-  ASSERT_EQ(replayed.exit_code, 0) << replayed.output;
-  std::map<std::string, std::string> expected = output_digests(axes);
-  expected.erase("sensors.log");
-  EXPECT_EQ(output_digests(report("replay")), expected);
+  expect_replay_gives_the_outputs_of("live");
 }
 
 TEST_F(StackRun, ReplayGivesTheLiveOutputsAndSurvivesDamage) {

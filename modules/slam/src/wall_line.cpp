@@ -52,41 +52,31 @@ std::size_t farthest_from_chord(const core::DepthScan& scan, const Piece& piece,
 }
 
 // Total least squares over the piece's points; false when it does not pass as a wall.
+Eigen::Vector2d point_of(const Column& column) { return {column.x_robot_m, column.y_robot_m}; }
+
 bool fit_piece(const core::DepthScan& scan, const Piece& piece, const WallLineParams& params, WallLine& line) {
   const int count = static_cast<int>(piece.last - piece.first + 1);
   if (count < params.min_points) return false;
-  double mean_x = 0.0;
-  double mean_y = 0.0;
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (std::size_t i = piece.first; i <= piece.last; ++i) mean += point_of(scan.columns[i]);
+  mean /= count;
+  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
   for (std::size_t i = piece.first; i <= piece.last; ++i) {
-    mean_x += scan.columns[i].x_robot_m;
-    mean_y += scan.columns[i].y_robot_m;
+    const Eigen::Vector2d d = point_of(scan.columns[i]) - mean;
+    scatter += d * d.transpose();
   }
-  mean_x /= count;
-  mean_y /= count;
-  double sxx = 0.0;
-  double sxy = 0.0;
-  double syy = 0.0;
-  for (std::size_t i = piece.first; i <= piece.last; ++i) {
-    const double x = scan.columns[i].x_robot_m - mean_x;
-    const double y = scan.columns[i].y_robot_m - mean_y;
-    sxx += x * x;
-    sxy += x * y;
-    syy += y * y;
-  }
-  const double direction = 0.5 * std::atan2(2.0 * sxy, sxx - syy);
-  const double ux = std::cos(direction);
-  const double uy = std::sin(direction);
+  const double direction = 0.5 * std::atan2(2.0 * scatter(0, 1), scatter(0, 0) - scatter(1, 1));
+  const Eigen::Vector2d along_line(std::cos(direction), std::sin(direction));
+  const Eigen::Vector2d across_line(-along_line.y(), along_line.x());
   double along_min = 0.0;
   double along_max = 0.0;
   double across_squared = 0.0;
   for (std::size_t i = piece.first; i <= piece.last; ++i) {
-    const double x = scan.columns[i].x_robot_m - mean_x;
-    const double y = scan.columns[i].y_robot_m - mean_y;
-    const double along = x * ux + y * uy;
-    const double across = -x * uy + y * ux;
+    const Eigen::Vector2d d = point_of(scan.columns[i]) - mean;
+    const double along = d.dot(along_line);
     along_min = std::min(along_min, along);
     along_max = std::max(along_max, along);
-    across_squared += across * across;
+    across_squared += d.dot(across_line) * d.dot(across_line);
   }
   const double rms = std::sqrt(across_squared / count);
   const double length = along_max - along_min;
