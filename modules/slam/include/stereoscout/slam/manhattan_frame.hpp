@@ -18,7 +18,7 @@ class ManhattanFrame {
   // Resultant length, 0..1, at which the learnt walls are taken to share axes.
   static constexpr double kMinAgreement = 0.9;
 
-  explicit ManhattanFrame(int walls_to_fix = 20) : walls_to_fix_(walls_to_fix < 1 ? 1 : walls_to_fix) {}
+  explicit ManhattanFrame(int walls_to_fix = 5) : walls_to_fix_(walls_to_fix < 1 ? 1 : walls_to_fix) {}
 
   void reset();
   // A wall at `map_direction_rad` (any multiple of pi apart is the same wall). Ignored once fixed.
