@@ -23,26 +23,24 @@ constexpr std::size_t kMaxPieces = 64;
 // A piece is split while a point lies more than this many times max_rms_m off its chord.
 constexpr double kSplitFactor = 3.0;
 
-double dx(const Column& a, const Column& b) { return static_cast<double>(b.x_robot_m) - a.x_robot_m; }
-double dy(const Column& a, const Column& b) { return static_cast<double>(b.y_robot_m) - a.y_robot_m; }
+Eigen::Vector2d point_of(const Column& column) { return {column.x_robot_m, column.y_robot_m}; }
 
 bool usable(const core::DepthScan& scan, std::size_t i, double max_range_m) {
   const Column& c = scan.columns[i];
-  if (c.kind != Column::Kind::obstacle) return false;
-  return std::hypot(c.x_robot_m - scan.origin_robot.x(), c.y_robot_m - scan.origin_robot.y()) <= max_range_m;
+  return c.kind == Column::Kind::obstacle && (point_of(c) - scan.origin_robot).norm() <= max_range_m;
 }
 
 // The column of `piece` farthest from its chord, and that distance.
 std::size_t farthest_from_chord(const core::DepthScan& scan, const Piece& piece, double& distance) {
-  const Column& a = scan.columns[piece.first];
-  const Column& b = scan.columns[piece.last];
-  const double length = std::hypot(dx(a, b), dy(a, b));
+  const Eigen::Vector2d a = point_of(scan.columns[piece.first]);
+  const Eigen::Vector2d chord = point_of(scan.columns[piece.last]) - a;
+  const double length = chord.norm();
   distance = 0.0;
   std::size_t farthest = piece.first;
   for (std::size_t i = piece.first + 1; i < piece.last; ++i) {
-    const Column& c = scan.columns[i];
-    const double d = length > 0.0 ? std::abs(dx(a, b) * dy(a, c) - dy(a, b) * dx(a, c)) / length
-                                   : std::hypot(dx(a, c), dy(a, c));
+    const Eigen::Vector2d to_point = point_of(scan.columns[i]) - a;
+    const double d = length > 0.0 ? std::abs(chord.x() * to_point.y() - chord.y() * to_point.x()) / length
+                                   : to_point.norm();
     if (d > distance) {
       distance = d;
       farthest = i;
@@ -52,8 +50,6 @@ std::size_t farthest_from_chord(const core::DepthScan& scan, const Piece& piece,
 }
 
 // Total least squares over the piece's points; false when it does not pass as a wall.
-Eigen::Vector2d point_of(const Column& column) { return {column.x_robot_m, column.y_robot_m}; }
-
 bool fit_piece(const core::DepthScan& scan, const Piece& piece, const WallLineParams& params, WallLine& line) {
   const int count = static_cast<int>(piece.last - piece.first + 1);
   if (count < params.min_points) return false;
@@ -133,8 +129,7 @@ bool fit_wall_line(const core::DepthScan& scan, const WallLineParams& params, Wa
     }
     Piece run{i, i};
     while (run.last + 1 < n && usable(scan, run.last + 1, params.max_range_m) &&
-           std::hypot(dx(scan.columns[run.last], scan.columns[run.last + 1]),
-                      dy(scan.columns[run.last], scan.columns[run.last + 1])) <= params.max_gap_m) {
+           (point_of(scan.columns[run.last + 1]) - point_of(scan.columns[run.last])).norm() <= params.max_gap_m) {
       ++run.last;
     }
     fit_run(scan, run, params, line, found);
