@@ -12,6 +12,7 @@ const char* to_string(ExploreEventKind kind) {
     case ExploreEventKind::stuck: return "stuck";
     case ExploreEventKind::goal_timeout: return "goal_timeout";
     case ExploreEventKind::no_net_progress: return "no_net_progress";
+    case ExploreEventKind::blocked_too_often: return "blocked_too_often";
     case ExploreEventKind::goal_failed: return "goal_failed";
     case ExploreEventKind::goal_blacklisted: return "goal_blacklisted";
     case ExploreEventKind::safety_stop: return "safety_stop";

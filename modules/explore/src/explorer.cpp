@@ -302,11 +302,26 @@ void Explorer::check_plan(const ExploreInput& input) {
       stop_waiting_for_walkers(input.time_s);
       ++counters_.replans;
       note(ExploreEventKind::plan_blocked, input);
+      if (blocked_too_often()) {
+        ++counters_.blocked_plan_limits;
+        note(ExploreEventKind::blocked_too_often, input);
+        goal_failed(input);
+        return;
+      }
       if (!replan(input)) goal_failed(input);
       return;
     }
   }
   stop_waiting_for_walkers(input.time_s);
+}
+
+// A plan that the next view blocks, again and again, runs through a gap each view opens and
+// the next closes: a blank wall's cells, erased by grazing rays, restored piece by piece. The
+// way back is never given up so.
+bool Explorer::blocked_too_often() {
+  ++blocked_plans_;
+  const int limit = params_.explore.max_blocked_plans;
+  return limit > 0 && state_ != ExploreState::returning && blocked_plans_ >= limit;
 }
 
 // A passer-by has walked on within seconds; a plan that stays blocked longer is blocked by
@@ -377,6 +392,7 @@ void Explorer::begin_pursuit(const ExploreInput& input) {
   longest_plan_m_ = 0.0;
   nearest_remaining_m_ = std::numeric_limits<double>::infinity();
   nearest_remaining_time_s_ = input.time_s;
+  blocked_plans_ = 0;
 }
 
 void Explorer::begin_walker_waits() {

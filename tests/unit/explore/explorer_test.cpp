@@ -1076,6 +1076,30 @@ TEST(Explorer, ARobotGoingBackAndForthBetweenTwoRoutesFailsWithoutNetProgress) {
   }
 }
 
+// The same two routes: each view blocks the plan through the gap or the one round it. With
+// max_blocked_plans the goal fails at that many blocked plans, long before its time limit.
+TEST(Explorer, AGoalWhosePlansKeepBeingBlockedFailsAtTheLimit) {
+  GapThatComesAndGoes scene;
+  ExploreParams params = no_look_params(100, 60);
+  params.explore.stuck_timeout_s = 10.0;
+  params.explore.goal_time_factor = 0.0;
+  params.explore.max_blocked_plans = 3;
+  Explorer explorer(params);
+  const double failed_s = chase_the_gap(explorer, scene, 240.0);
+  EXPECT_GT(failed_s, 0.0);
+  EXPECT_EQ(explorer.counters().blocked_plan_limits, 1U);
+  EXPECT_EQ(explorer.counters().goal_failures, 1U);
+  EXPECT_EQ(explorer.counters().replans, 3U);
+  EXPECT_EQ(explorer.counters().stuck, 0U);
+  std::size_t blocked = 0;
+  for (std::size_t i = 0; i < explorer.journal().size(); ++i) {
+    if (explorer.journal()[i].kind == ExploreEventKind::plan_blocked) ++blocked;
+    if (explorer.journal()[i].kind != ExploreEventKind::blocked_too_often) continue;
+    EXPECT_EQ(blocked, 3U);  // journaled at the third
+    EXPECT_EQ(explorer.journal()[i + 1].kind, ExploreEventKind::goal_failed);
+  }
+}
+
 // The robot starts in a disc whose floor the camera cannot see. A strip of it that no later
 // view covered can be the only way on (the office's corridor, beside the first office's
 // door): its cells stay passable all the run, not only near the robot or on the way back.

@@ -28,7 +28,8 @@ enum class ExploreEventKind : std::uint8_t {
   stuck,             // no progress along the plan for stuck_timeout_s
   goal_timeout,      // pursued longer than its plans' driving time allows (goal_time_factor)
   no_net_progress,   // no nearer to it than ever before, along any plan, for net_progress_timeout_s
-  goal_failed,       // the goal is given up (after no_plan, stuck, goal_timeout or no_net_progress)
+  blocked_too_often, // its plans were found blocked max_blocked_plans times
+  goal_failed,       // the goal is given up (after no_plan, stuck, goal_timeout, no_net_progress or blocked_too_often)
   goal_blacklisted,  // ... for blacklist_hold_s (0: for good): it failed goal_failures_before_blacklist times
   safety_stop,       // the next stretch would touch an occupied cell
   scan_stop,         // ... the grid clear, but the latest scan saw an obstacle there (scan_guard_min_points)

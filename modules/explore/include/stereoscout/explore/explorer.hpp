@@ -97,6 +97,7 @@ struct ExploreCounters {
   std::uint64_t stuck = 0;
   std::uint64_t goal_timeouts = 0;    // pursued longer than goal_time_factor allows
   std::uint64_t net_progress_timeouts = 0;  // no nearer than ever before for net_progress_timeout_s
+  std::uint64_t blocked_plan_limits = 0;    // goals failed for plans blocked max_blocked_plans times
   std::uint64_t safety_stops = 0;
   std::uint64_t scan_guard_stops = 0;  // holds for the latest scan's obstacles, the grid clear there (no look)
   std::uint64_t turns_to_face_plan = 0;  // ticks turning to face the plan instead of a safety stop
@@ -151,6 +152,7 @@ class Explorer {
   void stop_last_resorts(const ExploreInput& input);
   bool blocked_by_passers_by(const ExploreInput& input, const Eigen::Vector2i& cell) const;
   bool may_wait_for_walkers(const ExploreInput& input);
+  bool blocked_too_often();
   void stop_waiting_for_walkers(double time_s);
   void begin_walker_waits();
   bool plan_to_goal(const ExploreInput& input);
@@ -256,6 +258,7 @@ class Explorer {
   // Net progress: the shortest remaining length of any of the goal's plans, and when it was.
   double nearest_remaining_m_ = 0.0;
   double nearest_remaining_time_s_ = 0.0;
+  int blocked_plans_ = 0;  // this goal's plans found blocked (max_blocked_plans)
   // Plans kept for passers-by (wait_for_walkers): the time spent so on this goal (or the way back).
   bool waiting_for_walkers_ = false;
   double walker_wait_since_s_ = 0.0;
