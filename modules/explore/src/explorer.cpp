@@ -302,6 +302,7 @@ void Explorer::check_plan(const ExploreInput& input) {
       stop_waiting_for_walkers(input.time_s);
       ++counters_.replans;
       note(ExploreEventKind::plan_blocked, input);
+      ++blocked_plans_;
       if (blocked_too_often()) {
         ++counters_.blocked_plan_limits;
         note(ExploreEventKind::blocked_too_often, input);
@@ -318,8 +319,7 @@ void Explorer::check_plan(const ExploreInput& input) {
 // A plan that the next view blocks, again and again, runs through a gap each view opens and
 // the next closes: a blank wall's cells, erased by grazing rays, restored piece by piece. The
 // way back is never given up so.
-bool Explorer::blocked_too_often() {
-  ++blocked_plans_;
+bool Explorer::blocked_too_often() const {
   const int limit = params_.explore.max_blocked_plans;
   return limit > 0 && state_ != ExploreState::returning && blocked_plans_ >= limit;
 }

@@ -70,9 +70,10 @@ bool fit_piece(const core::DepthScan& scan, const Piece& piece, const WallLinePa
   for (std::size_t i = piece.first; i <= piece.last; ++i) {
     const Eigen::Vector2d d = point_of(scan.columns[i]) - mean;
     const double along = d.dot(along_line);
+    const double across = d.dot(across_line);
     along_min = std::min(along_min, along);
     along_max = std::max(along_max, along);
-    across_squared += d.dot(across_line) * d.dot(across_line);
+    across_squared += across * across;
   }
   const double rms = std::sqrt(across_squared / count);
   const double length = along_max - along_min;

@@ -152,7 +152,7 @@ class Explorer {
   void stop_last_resorts(const ExploreInput& input);
   bool blocked_by_passers_by(const ExploreInput& input, const Eigen::Vector2i& cell) const;
   bool may_wait_for_walkers(const ExploreInput& input);
-  bool blocked_too_often();
+  bool blocked_too_often() const;
   void stop_waiting_for_walkers(double time_s);
   void begin_walker_waits();
   bool plan_to_goal(const ExploreInput& input);
