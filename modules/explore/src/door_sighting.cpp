@@ -28,6 +28,7 @@ bool meet_door_line(const Eigen::Vector2d& origin, const Eigen::Vector2d& point,
 DoorSighting::DoorSighting(const ExploreParams& params)
     : range_m_(params.explore.door_sighting_range_m),
       max_offset_m_(params.explore.door_sighting_max_offset_m),
+      wall_from_scan_(params.explore.door_wall_from_scan),
       baseline_m_(params.camera_baseline_m) {}
 
 bool DoorSighting::wants(const SeenObstacles& seen) const {
@@ -42,12 +43,17 @@ void DoorSighting::observe(const SeenObstacles& seen, const DoorPassage& door, c
   const Eigen::Vector2d camera = seen.pose.transform_point(seen.scan->origin_robot);
   if ((camera - door.middle).norm() > range_m_ || (camera - door.middle).dot(door.along) > -kMinAhead_m) return;
   ++counters_.scans_at_doors;
-  if (!in_a_wall(door, grid)) {
+  const bool wall_in_grid = in_a_wall(door, grid);
+  if (!wall_in_grid && !wall_from_scan_) {
     ++counters_.not_in_a_wall;
     return;
   }
   DoorGap gap;
   if (!measure(*seen.scan, seen.pose, seen.pan_rad, door, gap)) return;
+  if (!wall_in_grid && !wall_in_scan(*seen.scan, seen.pose, door, gap)) {
+    ++counters_.not_in_a_wall;
+    return;
+  }
   const Eigen::Vector2d across = left_of(door.along);
   offset_ = (door.middle - 0.5 * (gap.left + gap.right)).dot(across) * across;
   if (!held_) ++counters_.doors_sighted;
@@ -72,12 +78,48 @@ core::Pose2 DoorSighting::navigation_pose(const core::Pose2& pose, const core::P
   return moved;
 }
 
-bool DoorSighting::sees_past(const core::DepthScan& scan, const core::Pose2& pose, const DoorPassage& door, int column,
-                             Eigen::Vector2d& point) {
+bool DoorSighting::measured_point(const core::DepthScan& scan, const core::Pose2& pose, int column,
+                                  Eigen::Vector2d& point) {
   const core::DepthScanColumn& seen = scan.columns[static_cast<std::size_t>(column)];
   if (seen.kind == core::DepthScanColumn::Kind::invalid) return false;
   point = pose.transform_point({seen.x_robot_m, seen.y_robot_m});
-  return (point - door.middle).dot(door.along) > kPastLine_m;
+  return true;
+}
+
+bool DoorSighting::sees_past(const core::DepthScan& scan, const core::Pose2& pose, const DoorPassage& door, int column,
+                             Eigen::Vector2d& point) {
+  return measured_point(scan, pose, column, point) && (point - door.middle).dot(door.along) > kPastLine_m;
+}
+
+bool DoorSighting::wall_in_scan(const core::DepthScan& scan, const core::Pose2& pose, const DoorPassage& door,
+                                const DoorGap& gap) {
+  const Eigen::Vector2d across = left_of(door.along);
+  const int columns = static_cast<int>(scan.columns.size());
+  // Columns run from the image's left to its right: outward from the gap's first column lies
+  // the wall left of the way through (across > 0), from its last the wall right of it.
+  bool wall_seen = false;
+  for (const int step : {-1, 1}) {
+    const double side = step < 0 ? 1.0 : -1.0;
+    const Eigen::Vector2d& jamb = step < 0 ? gap.left : gap.right;
+    int on_line = 0;
+    int off_line = 0;
+    bool reached = false;
+    Eigen::Vector2d point;
+    for (int column = step < 0 ? gap.first_column - 1 : gap.last_column + 1;
+         column >= 0 && column < columns && !reached; column += step) {
+      if (!measured_point(scan, pose, column, point)) continue;
+      const double beyond_jamb = side * (point - jamb).dot(across);
+      if (std::abs((point - door.middle).dot(door.along)) > kWallOnLine_m) {
+        ++off_line;
+      } else if (beyond_jamb > -kWallOnLine_m) {
+        ++on_line;
+        reached = beyond_jamb >= kWallBeside_m;
+      }
+    }
+    if (kWallOffLineShare * off_line > on_line) return false;
+    wall_seen = wall_seen || reached;
+  }
+  return wall_seen;
 }
 
 bool DoorSighting::measure(const core::DepthScan& scan, const core::Pose2& pose, double pan_rad,
@@ -119,6 +161,8 @@ bool DoorSighting::measure(const core::DepthScan& scan, const core::Pose2& pose,
       ++counters_.jamb_at_image_edge;
       return false;
     }
+    gap.first_column = first;
+    gap.last_column = last;
     // Columns run from the image's left to its right: the run's first end is the left jamb.
     if (!meet_door_line(left_camera, first_point, door, gap.left) || !meet_door_line(camera, last_point, door, gap.right)) {
       ++counters_.no_gap;

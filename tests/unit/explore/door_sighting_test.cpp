@@ -43,8 +43,13 @@ DoorPassage office_door(double grid_width_m = 0.9) {
 // through the gap see the floor 1.5 m past the line where the left camera, kBaseline_m to its
 // left, sees it too; the others nothing (the blank wall, and the background the left jamb hides
 // from the left camera).
+// What lies on the door's line beside the gap: a blank wall (no column measured), a wall the
+// matcher measures, or a post 0.15 m wide at each jamb with the floor beyond past them.
+enum class Beside { blank_wall, measured_wall, posts };
+
 core::DepthScan scan_of_door(const core::Pose2& truth, const Eigen::Vector2d& true_middle, double true_width_m,
-                             const Eigen::Vector2d& along = Eigen::Vector2d(0.0, 1.0), double pan_rad = 0.0) {
+                             const Eigen::Vector2d& along = Eigen::Vector2d(0.0, 1.0), double pan_rad = 0.0,
+                             Beside beside = Beside::blank_wall) {
   core::DepthScan scan;
   scan.origin_robot = {kCameraForward_m, 0.0};
   scan.columns.resize(kColumns);
@@ -64,8 +69,17 @@ core::DepthScan scan_of_door(const core::Pose2& truth, const Eigen::Vector2d& tr
     if (towards <= 0.0) continue;
     const double to_line = (true_middle - camera).dot(along);
     const Eigen::Vector2d on_line = camera + to_line / towards * ray;
-    if (std::abs((on_line - true_middle).dot(across)) >= 0.5 * true_width_m) continue;  // the blank wall
     const Eigen::Vector2d beyond = camera + (to_line + 1.5) / towards * ray;
+    const double aside = std::abs((on_line - true_middle).dot(across));
+    if (aside >= 0.5 * true_width_m) {
+      if (beside == Beside::blank_wall) continue;
+      const bool on_wall = beside == Beside::measured_wall || aside < 0.5 * true_width_m + 0.15;
+      const Eigen::Vector2d in_robot = truth.inverse().transform_point(on_wall ? on_line : beyond);
+      column.kind = on_wall ? core::DepthScanColumn::Kind::obstacle : core::DepthScanColumn::Kind::free;
+      column.x_robot_m = static_cast<float>(in_robot.x());
+      column.y_robot_m = static_cast<float>(in_robot.y());
+      continue;
+    }
     if (!through_gap(left_camera, beyond)) continue;  // hidden from the left camera
     const Eigen::Vector2d in_robot = truth.inverse().transform_point(beyond);
     column.kind = core::DepthScanColumn::Kind::free;
@@ -208,6 +222,40 @@ TEST(DoorSighting, LooksOnlyAtGapsInAWall) {
   EXPECT_EQ(sighting.counters().not_in_a_wall, 1U);
   sighting.observe(seen_at(scan, truth, core::Pose2(), 2.0), office_door(), wall.grid.view());
   EXPECT_TRUE(sighting.holding());
+}
+
+// With door_wall_from_scan, a door the grid holds no wall beside (grazing views along a
+// corridor erase its walls) is sighted when the scan measures the wall on its line beside both
+// jambs; not when beside it lie a blank wall or two posts with the floor beyond.
+TEST(DoorSighting, WithTheWallFromTheScanSightsADoorTheGridHoldsNoWallBeside) {
+  testing::TestGrid open{100, 100, CellState::free};
+  open.fill(50, 62, 51, 63, CellState::occupied);  // the jamb cells alone
+  open.fill(59, 62, 60, 63, CellState::occupied);
+  ExploreParams params = sighting_params();
+  params.explore.door_wall_from_scan = true;
+  const core::Pose2 truth{5.38, 5.0, core::kPi / 2.0};
+  const core::Pose2 believed{5.53, 5.0, core::kPi / 2.0};
+  const auto sighted = [&](Beside beside, std::uint64_t& not_in_a_wall) {
+    DoorSighting sighting(params);
+    const core::DepthScan scan = scan_of_door(truth, {5.5, 6.2}, 0.9, {0.0, 1.0}, 0.0, beside);
+    sighting.observe(seen_at(scan, believed, core::Pose2(), 1.0), office_door(), open.view());
+    not_in_a_wall = sighting.counters().not_in_a_wall;
+    return sighting.holding() ? sighting.navigation_pose(believed, core::Pose2()).x : -1.0;
+  };
+  std::uint64_t refused = 0;
+  EXPECT_NEAR(sighted(Beside::measured_wall, refused), truth.x, 0.01);
+  EXPECT_EQ(refused, 0U);
+  EXPECT_EQ(sighted(Beside::blank_wall, refused), -1.0);
+  EXPECT_EQ(refused, 1U);
+  EXPECT_EQ(sighted(Beside::posts, refused), -1.0);
+  EXPECT_EQ(refused, 1U);
+
+  // Without the key the measured wall is not asked: the grid's is.
+  DoorSighting grid_only(sighting_params());
+  const core::DepthScan scan = scan_of_door(truth, {5.5, 6.2}, 0.9, {0.0, 1.0}, 0.0, Beside::measured_wall);
+  grid_only.observe(seen_at(scan, believed, core::Pose2(), 1.0), office_door(), open.view());
+  EXPECT_FALSE(grid_only.holding());
+  EXPECT_EQ(grid_only.counters().not_in_a_wall, 1U);
 }
 
 // A sighting is of one door: when the plan passes another one next, it is dropped; a scan seen

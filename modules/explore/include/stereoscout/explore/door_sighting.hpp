@@ -61,6 +61,8 @@ struct DoorSightingCounters {
 struct DoorGap {
   Eigen::Vector2d left = Eigen::Vector2d::Zero();   // the jamb to the left of the way through
   Eigen::Vector2d right = Eigen::Vector2d::Zero();
+  int first_column = 0;  // the gap's run of columns in the scan (the left jamb's end first)
+  int last_column = 0;
 };
 
 class DoorSighting {
@@ -89,6 +91,17 @@ class DoorSighting {
   // between a person's trace and a wall, seen along a corridor, is none.
   static constexpr int kWallCells = 3;
   static constexpr int kWallCellsOccupied = 2;
+  // With explore.door_wall_from_scan, a door is also in a wall when the scan sees the wall
+  // beside it: outward from one end of the gap (the scan's jamb), the measured columns see
+  // points within kWallOnLine_m of the door's line up to kWallBeside_m beyond the jamb, and
+  // outward from neither end do more than one in kWallOffLineShare of them see a point off
+  // the line (the floor past two posts, or a corridor's far wall beside a person). The other
+  // side may be out of the image or unmeasured: nearer than about 1.1 m the matcher measures
+  // no wall in the image's outer band. Square on from 1.1 m, the office's corridor walls are
+  // measured on the line to the centimetre along their whole length in the image.
+  static constexpr double kWallOnLine_m = 0.15;
+  static constexpr double kWallBeside_m = 0.2;
+  static constexpr int kWallOffLineShare = 4;
 
   explicit DoorSighting(const ExploreParams& params);
 
@@ -107,6 +120,10 @@ class DoorSighting {
   bool holding() const { return held_; }
   // Whether `door` is an opening in a wall in `grid` (kWallCells, kWallCellsOccupied).
   static bool in_a_wall(const DoorPassage& door, const GridView& grid);
+  // Whether `scan` (taken at `pose`) sees the wall on `door`'s line beside `gap`
+  // (kWallOnLine_m, kWallBeside_m, kWallOffLineShare).
+  static bool wall_in_scan(const core::DepthScan& scan, const core::Pose2& pose, const DoorPassage& door,
+                           const DoorGap& gap);
   // The last sighting's offset across the door (map frame, added to the scan's pose), and its
   // door.
   Eigen::Vector2d last_offset() const { return offset_; }
@@ -123,9 +140,12 @@ class DoorSighting {
   // Whether `column` of `scan` (taken at `pose`) saw past the door's line; its point in `point`.
   static bool sees_past(const core::DepthScan& scan, const core::Pose2& pose, const DoorPassage& door, int column,
                         Eigen::Vector2d& point);
+  // `column`'s point in the map frame of `pose`; false for a column that measured nothing.
+  static bool measured_point(const core::DepthScan& scan, const core::Pose2& pose, int column, Eigen::Vector2d& point);
 
   double range_m_ = 0.0;
   double max_offset_m_ = 0.0;
+  bool wall_from_scan_ = false;
   double baseline_m_ = 0.0;
   double last_scan_time_s_ = -1.0;
   bool held_ = false;
