@@ -23,7 +23,9 @@ Eigen::Vector2d DoorStandoff::point(const DoorPassage& passage) const {
   return passage.middle - standoff_m_ * passage.along;
 }
 
-bool DoorStandoff::wants_grid() const { return phase_ == Phase::none || phase_ == Phase::approach; }
+bool DoorStandoff::wants_grid(const DoorPassage& passage) const {
+  return phase_ == Phase::none || phase_ == Phase::approach || !same_door(passage, door_);
+}
 
 void DoorStandoff::begin(const DoorPassage& passage, bool in_a_wall, const core::Pose2& pose, double time_s) {
   door_ = passage;

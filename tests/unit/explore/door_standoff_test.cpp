@@ -173,6 +173,25 @@ TEST(DoorStandoff, StandsOffOncePerApproach) {
   EXPECT_EQ(standoff.counters().stood_off, 2U);
 }
 
+// Once a door is done with, its passage needs no grid answers, but the next door's does: a
+// door met after another must not begin with no answers (no wall, the way shut).
+TEST(DoorStandoff, WantsTheGridAgainForTheNextDoor) {
+  DoorStandoff standoff(standoff_params());
+  const DoorPassage door = side_door();
+  EXPECT_TRUE(standoff.wants_grid(door));
+  core::Pose2 pose{3.6, 4.2, 0.0};
+  stand_off(standoff, door, pose);
+  EXPECT_FALSE(standoff.wants_grid(door));
+  DoorPassage next = side_door();
+  next.middle.x() += 2.5;
+  EXPECT_TRUE(standoff.wants_grid(next));
+  core::Pose2 on{pose.x, pose.y, 0.0};
+  stand_off(standoff, next, on);
+  EXPECT_EQ(standoff.counters().doors, 2U);
+  EXPECT_EQ(standoff.counters().stood_off, 2U);
+  EXPECT_EQ(standoff.counters().not_in_a_wall, 0U);
+}
+
 TEST(DoorStandoff, OffByDefault) {
   DoorStandoff standoff(testing::test_params(100, 100));
   core::Pose2 pose{3.6, 4.2, 0.0};

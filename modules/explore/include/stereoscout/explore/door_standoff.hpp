@@ -69,8 +69,9 @@ class DoorStandoff {
   void reset();
   // The point `passage`'s standoff drives to.
   Eigen::Vector2d point(const DoorPassage& passage) const;
-  // Whether steer() needs `grid`'s answers (it drives to the point, or may begin to).
-  bool wants_grid() const;
+  // Whether steer() with `passage` needs the grid's answers (it drives to the point, or may
+  // begin to: no door yet, or `passage` is another door than the last one's).
+  bool wants_grid(const DoorPassage& passage) const;
   // What the caller found in its grid for the door axis's passage.
   struct GridAnswers {
     bool in_a_wall = false;  // DoorSighting::in_a_wall(passage)
