@@ -664,8 +664,7 @@ void Explorer::stand_off(const GridView& grid, const ExploreInput& input, core::
   const bool sighted = sighting_.holding() && same_door(sighting_.door(), passage);
   DoorStandoff::GridAnswers answers;
   if (passage.known && standoff_.wants_grid(passage)) {
-    // With door_wall_from_scan the sighting at the standoff asks the scan for the wall instead.
-    answers.in_a_wall = params_.explore.door_wall_from_scan || DoorSighting::in_a_wall(passage, grid);
+    answers.in_a_wall = DoorSighting::in_a_wall(passage, grid);
     const Eigen::Vector2d to_point = standoff_.point(passage) - position_of(input.pose);
     const double length_m = to_point.norm();
     answers.way_clear =
