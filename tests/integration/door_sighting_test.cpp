@@ -114,7 +114,7 @@ std::array<SightingScore, 2> sight(cli::RenderedScanner& scanner, const OfficeDo
   return scores;
 }
 
-// The office's doors as the tests below see them.
+// Sights N1 (both ways) and S2 from sight()'s views and checks the corrected poses.
 void expect_sightings_put_the_robot_where_it_stands(bool wall_from_scan) {
   const host_sim::WorldLoad loaded = host_sim::load_world(test::source_path("config/worlds/office.yaml"));
   ASSERT_TRUE(loaded.ok()) << loaded.error_text();

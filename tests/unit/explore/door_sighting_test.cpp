@@ -38,15 +38,15 @@ DoorPassage office_door(double grid_width_m = 0.9) {
   return door;
 }
 
-// The scan a camera at `truth` takes of a wall along the door's line with a gap
-// `true_width_m` wide around `true_middle`, passed along `along`: columns of the right camera
-// through the gap see the floor 1.5 m past the line where the left camera, kBaseline_m to its
-// left, sees it too; the others nothing (the blank wall, and the background the left jamb hides
-// from the left camera).
 // What lies on the door's line beside the gap: a blank wall (no column measured), a wall the
 // matcher measures, or a post 0.15 m wide at each jamb with the floor beyond past them.
 enum class Beside { blank_wall, measured_wall, posts };
 
+// The scan a camera at `truth` takes of a wall along the door's line with a gap
+// `true_width_m` wide around `true_middle`, passed along `along`: columns of the right camera
+// through the gap see the floor 1.5 m past the line where the left camera, kBaseline_m to its
+// left, sees it too; the others nothing (the blank wall, and the background the left jamb hides
+// from the left camera), or what `beside` says lies beside the gap.
 core::DepthScan scan_of_door(const core::Pose2& truth, const Eigen::Vector2d& true_middle, double true_width_m,
                              const Eigen::Vector2d& along = Eigen::Vector2d(0.0, 1.0), double pan_rad = 0.0,
                              Beside beside = Beside::blank_wall) {
