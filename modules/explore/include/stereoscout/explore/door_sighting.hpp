@@ -47,7 +47,7 @@ namespace stereoscout::explore {
 
 struct DoorSightingCounters {
   std::uint64_t scans_at_doors = 0;     // scans taken with a door on the plan in range
-  std::uint64_t not_in_a_wall = 0;      // of them: the grid holds no wall on the door's line beside a jamb
+  std::uint64_t not_in_a_wall = 0;      // of them: no wall beside a jamb in the grid (nor, with door_wall_from_scan, in the scan)
   std::uint64_t sightings = 0;          // of them: the door's gap measured and the pose corrected
   std::uint64_t no_gap = 0;             // no run of past columns around the middle's bearing
   std::uint64_t jamb_at_image_edge = 0;
