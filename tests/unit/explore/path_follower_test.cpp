@@ -271,6 +271,42 @@ TEST(DoorAxis, FindsTheDoorOnThePlanAndKeepsItWhilePassing) {
   }
 }
 
+// A person standing in the corridor just past the door, aside of its middle, makes a gap with
+// the far jamb whose middle lies within 0.3 m of the door's, its axis 20-30 degrees off the
+// door's (office seed 4 at S2). Once the person has gone, the door found on the next plan is
+// another door: the axis turns square to the wall, and a sighting of the skewed gap is not
+// followed.
+TEST(DoorAxis, TakesTheDoorForAnotherOnceThePersonBesideItHasGone) {
+  ExploreParams params = test_params(60, 80);
+  params.explore.door_axis_before_m = 1.4;
+  params.explore.door_axis_all_gaps = true;
+  const Eigen::Vector2d robot(2.0, 3.0);
+  const Eigen::Vector2i robot_cell(20, 30);
+  const Eigen::Vector2i goal_cell(45, 55);
+  Doorway with_person(params);
+  with_person.grid.fill(9, 43, 17, 46, CellState::occupied);
+  ASSERT_TRUE(with_person.map.rebuild(with_person.grid.view(), robot, robot));
+  ASSERT_EQ(with_person.planner.plan(with_person.map, robot_cell, goal_cell, with_person.plan), PlanResult::found);
+  DoorAxis axis(params);
+  axis.update(with_person.plan, 0, with_person.map, robot);
+  ASSERT_TRUE(axis.passage().known);
+  const DoorPassage skewed = axis.passage();
+  std::printf("the gap beside the person: middle (%.2f, %.2f), axis %.1f degrees off the door's\n", skewed.middle.x(),
+              skewed.middle.y(), core::radians_to_degrees(std::acos(skewed.along.y())));
+  ASSERT_LT(skewed.along.y(), std::cos(core::degrees_to_radians(15.0)));
+
+  Doorway gone(params);
+  ASSERT_TRUE(gone.map.rebuild(gone.grid.view(), robot, robot));
+  ASSERT_EQ(gone.planner.plan(gone.map, robot_cell, goal_cell, gone.plan), PlanResult::found);
+  axis.update(gone.plan, 0, gone.map, robot);
+  ASSERT_TRUE(axis.passage().known);
+  EXPECT_NEAR(axis.passage().along.y(), 1.0, 1e-9);
+  EXPECT_NEAR(axis.passage().middle.x(), kMiddleX, 1e-9);
+  EXPECT_FALSE(same_door(skewed, axis.passage()));
+  axis.follow_sighting(skewed);
+  EXPECT_NEAR(axis.passage().along.y(), 1.0, 1e-9);
+}
+
 // A held door sighting measured the pose against its own find of the door, whose middle can lie
 // a cell aside of the axis's (the grid's jamb cells move between plans): the axis runs through
 // the sighted door from then on, and later finds of the same door keep it there. Another door

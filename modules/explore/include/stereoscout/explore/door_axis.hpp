@@ -47,8 +47,8 @@ struct DoorPassage {
 bool find_door(const Plan& plan, std::size_t progress, const NavigationMap& map, const Eigen::Vector2d& robot,
                double search_m, bool narrow_only, double clear_after_m, DoorPassage& door);
 
-// Both known, their middles within 0.3 m of each other, passed the same way: one door, found
-// again on another plan or in another grid.
+// Both known, their middles within 0.3 m of each other, their axes within 15 degrees of each
+// other, passed the same way: one door, found again on another plan or in another grid.
 bool same_door(const DoorPassage& a, const DoorPassage& b);
 
 class DoorAxis {
