@@ -18,7 +18,7 @@ constexpr double kSearchBeyond_m = 0.5;
 // kSameDoorAngle_deg, are the same door, found again on a new plan. The axis of one door found
 // between other pairs of cells turns by a cell over the width: about 6 degrees a cell. A gap
 // between a jamb and something beyond the door (a person in the corridor, 0.3 m past the wall)
-// has its middle within a few centimetres of the door's but its axis 20-30 degrees off it; an
+// has its middle within 0.1-0.2 m of the door's but its axis 20-30 degrees off it; an
 // axis or a sighting kept from it steered the robot into the jamb once the person had gone
 // (office seed 4 at S2, docs/results.md).
 constexpr double kSameDoor_m = 0.3;
