@@ -14,15 +14,9 @@ constexpr double kSideReach_m = 0.75;
 // The next door is looked for this much farther along the plan than door_axis_before_m: the
 // plan bends towards a door before it reaches its axis.
 constexpr double kSearchBeyond_m = 0.5;
-// Doors whose middles lie nearer than this to each other, and whose axes differ by less than
-// kSameDoorAngle_deg, are the same door, found again on a new plan. The axis of one door found
-// between other pairs of cells turns by a cell over the width: about 6 degrees a cell. A gap
-// between a jamb and something beyond the door (a person in the corridor, 0.3 m past the wall)
-// has its middle within 0.1-0.2 m of the door's but its axis 20-30 degrees off it; an
-// axis or a sighting kept from it steered the robot into the jamb once the person had gone
-// (office seed 4 at S2, docs/results.md).
+// Doors whose middles lie nearer than this to each other (and whose axes lie within
+// kSameDoorAngle_deg) are the same door, found again on a new plan.
 constexpr double kSameDoor_m = 0.3;
-constexpr double kSameDoorAngle_deg = 15.0;
 }  // namespace
 
 bool DoorPassage::axis_target(const Eigen::Vector2d& robot, double lookahead_m, double before_m,

@@ -293,7 +293,7 @@ TEST(DoorAxis, TakesTheDoorForAnotherOnceThePersonBesideItHasGone) {
   const DoorPassage skewed = axis.passage();
   std::printf("the gap beside the person: middle (%.2f, %.2f), axis %.1f degrees off the door's\n", skewed.middle.x(),
               skewed.middle.y(), core::radians_to_degrees(std::acos(skewed.along.y())));
-  ASSERT_LT(skewed.along.y(), std::cos(core::degrees_to_radians(15.0)));
+  ASSERT_LT(skewed.along.y(), std::cos(core::degrees_to_radians(kSameDoorAngle_deg)));
 
   Doorway gone(params);
   ASSERT_TRUE(gone.map.rebuild(gone.grid.view(), robot, robot));

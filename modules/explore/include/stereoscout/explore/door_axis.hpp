@@ -47,8 +47,16 @@ struct DoorPassage {
 bool find_door(const Plan& plan, std::size_t progress, const NavigationMap& map, const Eigen::Vector2d& robot,
                double search_m, bool narrow_only, double clear_after_m, DoorPassage& door);
 
-// Both known, their middles within 0.3 m of each other, their axes within 15 degrees of each
-// other, passed the same way: one door, found again on another plan or in another grid.
+// The axes of one door found again lie within this angle of each other. The axis of a door
+// found between other pairs of cells turns by about 6 degrees a cell over its width. A gap
+// between a jamb and something beyond the door (a person in the corridor, 0.3 m past the wall)
+// has its middle within 0.1-0.2 m of the door's but its axis 20-30 degrees off it; an axis or a
+// sighting kept from it steered the robot into the jamb once the person had gone (office
+// seed 4 at S2, docs/results.md).
+inline constexpr double kSameDoorAngle_deg = 15.0;
+
+// Both known, their middles within 0.3 m of each other, their axes within kSameDoorAngle_deg
+// of each other, passed the same way: one door, found again on another plan or in another grid.
 bool same_door(const DoorPassage& a, const DoorPassage& b);
 
 class DoorAxis {
