@@ -285,6 +285,7 @@ void write_counters(report::JsonWriter& json, const stack::Stack& stack) {
       .unsigned_integer("safety_stops", e.safety_stops)
       .unsigned_integer("scan_guard_stops", e.scan_guard_stops)
       .unsigned_integer("turns_to_face_plan", e.turns_to_face_plan)
+      .unsigned_integer("layer_gap_steers", e.layer_gap_steers)
       .unsigned_integer("stalls", e.stalls)
       .unsigned_integer("back_offs", e.back_offs)
       .unsigned_integer("back_off_turns", e.back_off_turns)

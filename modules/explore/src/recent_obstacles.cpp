@@ -147,4 +147,45 @@ GridView RecentObstacles::stamp(const GridView& grid, const core::Pose2& pose, c
   return stamped.result();
 }
 
+namespace {
+
+// Keeps the `count` points of least `key` seen so far in `best` (ascending), `held` of them.
+void keep_least(const Eigen::Vector2d& point, double key, int count, Eigen::Vector2d* best, double* keys, int& held) {
+  if (held == count && key >= keys[held - 1]) return;
+  int k = held < count ? held++ : held - 1;
+  for (; k > 0 && keys[k - 1] > key; --k) {
+    keys[k] = keys[k - 1];
+    best[k] = best[k - 1];
+  }
+  keys[k] = key;
+  best[k] = point;
+}
+
+}  // namespace
+
+bool RecentObstacles::gap_ahead(const core::Pose2& pose, const core::Pose2& odometry, double behind_m, double ahead_m,
+                                double aside_m, int support, Gap& gap) const {
+  if (!enabled() || support < 1 || support > kMaxGapSupport) return false;
+  const core::Pose2 robot_from_layer = layer_pose(pose, odometry).inverse();
+  Eigen::Vector2d left[kMaxGapSupport];
+  Eigen::Vector2d right[kMaxGapSupport];
+  double left_keys[kMaxGapSupport];
+  double right_keys[kMaxGapSupport];
+  int lefts = 0;
+  int rights = 0;
+  for (std::size_t i = 0; i < size_; ++i) {
+    const Eigen::Vector2d point = robot_from_layer.transform_point(points_[i].layer_xy);
+    if (point.x() < -behind_m || point.x() > ahead_m || std::abs(point.y()) > aside_m) continue;
+    if (point.y() > 0.0) {
+      keep_least(point, point.y(), support, left, left_keys, lefts);
+    } else {
+      keep_least(point, -point.y(), support, right, right_keys, rights);
+    }
+  }
+  if (lefts < support || rights < support) return false;
+  gap.left = left[support - 1];
+  gap.right = right[support - 1];
+  return true;
+}
+
 }  // namespace stereoscout::explore

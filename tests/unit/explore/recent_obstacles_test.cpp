@@ -283,5 +283,40 @@ TEST(RecentObstacles, ObservingAndStampingAllocateNothing) {
   EXPECT_EQ(scope.allocations(), 0U);
 }
 
+// The gap ahead is found in the robot's frame by the odometry since the scan, whatever the map
+// pose: the innermost points either side, the second nearest the line on each so that a lone
+// stray match inside the door makes no side.
+TEST(RecentObstacles, FindsTheGapBetweenKeptPointsAheadInTheRobotsFrame) {
+  RecentObstacles recent(recent_config(), 60, 60);
+  core::DepthScan scan;
+  // Two posts 1.0 m ahead, their inner edges at y = +0.42 and -0.48, one column a centimetre.
+  for (double y = 0.42; y <= 0.6; y += 0.01) scan.columns.push_back(column(1.0, y, core::DepthScanColumn::Kind::obstacle));
+  for (double y = -0.48; y >= -0.6; y -= 0.01) scan.columns.push_back(column(1.0, y, core::DepthScanColumn::Kind::obstacle));
+  // A stray match inside the gap, 0.1 m left of the line.
+  scan.columns.push_back(column(1.2, 0.1, core::DepthScanColumn::Kind::obstacle));
+  const core::Pose2 odometry_at_scan{-2.0, 1.0, 0.3};
+  recent.observe(seen_at(scan, odometry_at_scan, 1.0));
+
+  // 0.5 m on by the odometry; the map pose is anywhere.
+  const core::Pose2 odometry_now = odometry_at_scan.compose(core::Pose2{0.5, 0.0, 0.0});
+  const core::Pose2 map_pose{7.0, -3.0, 2.0};
+  RecentObstacles::Gap gap;
+  ASSERT_TRUE(recent.gap_ahead(map_pose, odometry_now, 0.35, 0.8, 0.6, 2, gap));
+  EXPECT_NEAR(gap.left.x(), 0.5, 1e-6);
+  EXPECT_NEAR(gap.right.x(), 0.5, 1e-6);
+  // The second point from the line: the stray one is first on the left, then the post's edge.
+  EXPECT_NEAR(gap.left.y(), 0.42, 1e-3);
+  EXPECT_NEAR(gap.right.y(), -0.51, 1e-3);  // a scan's points are kept 0.03 m apart: -0.48, -0.51, ...
+
+  // With support 1 the stray point is the left side.
+  ASSERT_TRUE(recent.gap_ahead(map_pose, odometry_now, 0.35, 0.8, 0.6, 1, gap));
+  EXPECT_NEAR(gap.left.y(), 0.1, 1e-3);
+  // Too far ahead, or behind the robot: no gap.
+  EXPECT_FALSE(recent.gap_ahead(map_pose, odometry_at_scan, 0.35, 0.8, 0.6, 2, gap));
+  EXPECT_FALSE(recent.gap_ahead(map_pose, odometry_at_scan.compose(core::Pose2{1.5, 0.0, 0.0}), 0.35, 0.8, 0.6, 2, gap));
+  // Neither side within reach of the line: none.
+  EXPECT_FALSE(recent.gap_ahead(map_pose, odometry_now, 0.35, 0.8, 0.4, 2, gap));
+}
+
 }  // namespace
 }  // namespace stereoscout::explore

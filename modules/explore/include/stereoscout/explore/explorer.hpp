@@ -101,6 +101,7 @@ struct ExploreCounters {
   std::uint64_t safety_stops = 0;
   std::uint64_t scan_guard_stops = 0;  // holds for the latest scan's obstacles, the grid clear there (no look)
   std::uint64_t turns_to_face_plan = 0;  // ticks turning to face the plan instead of a safety stop
+  std::uint64_t layer_gap_steers = 0;    // ticks steering through the recent obstacle layer's gap
   std::uint64_t stalls = 0;            // forward motion commanded, none made: a contact
   std::uint64_t emergency_stop_ticks = 0;
   std::uint64_t looks = 0;
@@ -184,6 +185,9 @@ class Explorer {
   bool turn_to_face_plan(const GridView& grid, const ExploreInput& input, ExploreOutput& output);
   // The door standoff's command in place of `command` while it stands off (door_standoff.hpp).
   void stand_off(const GridView& grid, const ExploreInput& input, core::DriveCommand& command);
+  // explore.layer_gap_reach_m: steers at the middle of the layer's gap the plan runs through.
+  void centre_in_layer_gap(const ExploreInput& input, core::DriveCommand& command);
+  bool plan_passes_between(const Eigen::Vector2d& robot, const Eigen::Vector2d& left, const Eigen::Vector2d& right) const;
   Blocked disc_blocked(const GridView& grid, const Eigen::Vector2d& centre, const Eigen::Vector2d& robot,
                        const ExploreInput& input) const;
   bool grid_blocks_disc(const GridView& grid, const Eigen::Vector2d& centre, const Eigen::Vector2d& robot,

@@ -48,6 +48,8 @@ class RecentObstacles {
   // A later scan sees past a point when it measured the floor or a surface this much beyond it
   // (the scan's same-surface depth), plus twice a free column's end-range sigma.
   static constexpr double kSeenPastMargin_m = 0.15;
+  // gap_ahead()'s `support` at most.
+  static constexpr int kMaxGapSupport = 8;
 
   // max_width x max_height: the largest grid stamp() must copy.
   RecentObstacles(const core::ExploreConfig& config, int max_width, int max_height);
@@ -67,6 +69,17 @@ class RecentObstacles {
   // itself when no cell changes (or it is larger than the buffer, counted). Valid until the
   // next call.
   GridView stamp(const GridView& grid, const core::Pose2& pose, const core::Pose2& odometry, double time_s);
+
+  // The gap between kept points just ahead of the robot, in the robot's frame (x forward, y
+  // left): of the points from `behind_m` behind the robot's centre to `ahead_m` ahead of it and
+  // within `aside_m` of its centre line, the `support`-th nearest the line on either side (so
+  // that a lone stray match does not make a side). False when either side has fewer.
+  struct Gap {
+    Eigen::Vector2d left = Eigen::Vector2d::Zero();
+    Eigen::Vector2d right = Eigen::Vector2d::Zero();
+  };
+  bool gap_ahead(const core::Pose2& pose, const core::Pose2& odometry, double behind_m, double ahead_m, double aside_m,
+                 int support, Gap& gap) const;
 
   std::size_t held() const { return size_; }
   std::uint64_t kept() const { return kept_; }
