@@ -685,7 +685,7 @@ void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
 
 // The follower steers by the map pose and the plan, both from the estimate's grid; a door's
 // jambs kept in the layer lie where the camera saw them relative to the robot, by the odometry
-// alone. At office seed 2's contact with N1's west jamb the kept points lay within 0.01 m of
+// alone. At office seed 2's contact with N1's west jamb the kept points lay within 0.02 m of
 // the jamb while the robot drove 0.11 m off the door's middle into it (docs/results.md).
 void Explorer::centre_in_layer_gap(const ExploreInput& input, core::DriveCommand& command) {
   const double reach = params_.explore.layer_gap_reach_m;
