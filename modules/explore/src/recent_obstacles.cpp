@@ -20,6 +20,7 @@ RecentObstacles::RecentObstacles(const core::ExploreConfig& config, int max_widt
       range_m_(config.recent_obstacle_range_m),
       min_points_(std::max(1, config.recent_obstacle_min_points)),
       estimate_heading_(config.recent_obstacle_estimate_heading),
+      blank_walls_(config.recent_obstacle_blank_walls),
       capacity_(config.recent_obstacle_s > 0.0 ? static_cast<std::size_t>(std::max(1, config.recent_obstacle_capacity)) : 0),
       points_(new Point[capacity_ == 0 ? 1 : capacity_]),
       cell_capacity_(capacity_ == 0 ? 0 : cells_of(max_width, max_height)),
@@ -94,7 +95,8 @@ void RecentObstacles::drop_oldest(std::size_t count) {
 void RecentObstacles::keep_columns(const core::DepthScan& scan, const core::Pose2& layer, double time_s) {
   Eigen::Vector2d last = Eigen::Vector2d::Constant(1e9);
   for (const core::DepthScanColumn& column : scan.columns) {
-    if (column.kind != core::DepthScanColumn::Kind::obstacle || !column.obstacle_at_camera_height) continue;
+    if (column.kind != core::DepthScanColumn::Kind::obstacle) continue;
+    if (!column.obstacle_at_camera_height && !(blank_walls_ && column.blank_wall)) continue;
     const Eigen::Vector2d robot_xy(column.x_robot_m, column.y_robot_m);
     if ((robot_xy - scan.origin_robot).norm() > range_m_ || (robot_xy - last).norm() < kPointSpacing_m) continue;
     last = robot_xy;

@@ -207,6 +207,30 @@ TEST(RecentObstacles, LowObstaclesAndFarSurfacesAreNotKept) {
   EXPECT_EQ(recent.held(), 0U);
 }
 
+// A door's jamb in a blank wall: the scan puts it at the wall's base, not measured at the
+// camera's height. Kept with recent_obstacle_blank_walls only; a low box never.
+TEST(RecentObstacles, BlankWallColumnsAreKeptWithTheirKeyOnly) {
+  core::DepthScan blank_jamb = wall_ahead(1.0, 0.4, /*at_camera_height=*/false);
+  for (core::DepthScanColumn& c : blank_jamb.columns) c.blank_wall = true;
+  const core::DepthScan box = wall_ahead(1.5, 0.4, /*at_camera_height=*/false);
+  core::ExploreConfig config = recent_config();
+  RecentObstacles without(config, 60, 60);
+  without.observe(seen_at(blank_jamb, core::Pose2{}, 1.0));
+  EXPECT_EQ(without.held(), 0U);
+  config.recent_obstacle_blank_walls = true;
+  RecentObstacles with(config, 60, 60);
+  with.observe(seen_at(box, core::Pose2{}, 1.0));
+  EXPECT_EQ(with.held(), 0U);
+  with.observe(seen_at(blank_jamb, core::Pose2{}, 2.0));
+  EXPECT_GT(with.held(), 0U);
+  // Placed by the odometry: the estimate 0.3 m off across the way does not move it.
+  const TestGrid grid(60, 60, CellState::free);
+  const core::Pose2 estimate{2.0, 3.3, 0.0};
+  const GridView stamped = with.stamp(grid.view(), estimate, core::Pose2{}, 3.0);
+  EXPECT_TRUE(occupied_at(stamped, Eigen::Vector2d(3.0, 3.3)));
+  EXPECT_FALSE(occupied_at(stamped, Eigen::Vector2d(3.0, 2.6)));
+}
+
 TEST(RecentObstacles, PointsExpireAndAStrayPointMarksNoCell) {
   core::ExploreConfig config = recent_config();
   config.recent_obstacle_min_points = 2;

@@ -17,6 +17,9 @@
 // on, a stray match. Otherwise after recent_obstacle_s, or once the odometry has driven
 // recent_obstacle_travel_m since it was kept (its drift grows with distance, not time).
 //
+// With recent_obstacle_blank_walls the scan's blank-wall columns are kept too: the base of a
+// wall stereo did not measure (a door's jambs in the office's blank corridor walls).
+//
 // With recent_obstacle_estimate_heading the points are kept in a layer frame instead: its
 // heading is the estimate's, its translation the odometry's, each stretch driven between scans
 // turned by the estimate's heading at the stretch's start. Odometry's heading drifts most in a
@@ -118,6 +121,7 @@ class RecentObstacles {
   double range_m_ = 0.0;
   int min_points_ = 1;
   bool estimate_heading_ = false;
+  bool blank_walls_ = false;  // recent_obstacle_blank_walls
   std::size_t capacity_ = 0;
   std::unique_ptr<Point[]> points_;  // oldest first
   std::size_t size_ = 0;

@@ -57,7 +57,7 @@
 // same_surface_depth_m beyond it, and beyond blank_wall_within_m some floor matched in the
 // column (facing something nearer than the matcher's largest disparity reaches, nothing is
 // matched, and a step near the horizon would pass for a far base). Failing that, the
-// floor's end as above.
+// floor's end as above. Both kinds of blank-wall obstacle are marked blank_wall.
 // An obstacle column is also marked obstacle_at_camera_height when the column holds an
 // obstacle point within floor_tolerance_m of the camera's height no more than
 // same_surface_depth_m behind the obstacle: such an obstacle (a person, a wall) stays in view
