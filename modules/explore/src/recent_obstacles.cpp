@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace stereoscout::explore {
 namespace {
@@ -26,7 +27,9 @@ RecentObstacles::RecentObstacles(const core::ExploreConfig& config, int max_widt
       cell_capacity_(capacity_ == 0 ? 0 : cells_of(max_width, max_height)),
       counts_(new std::uint8_t[cell_capacity_ == 0 ? 1 : cell_capacity_]()),
       cells_(new std::uint8_t[cell_capacity_ == 0 ? 1 : cell_capacity_]),
-      touched_(new std::size_t[capacity_ == 0 ? 1 : capacity_]) {}
+      touched_(new std::size_t[capacity_ == 0 ? 1 : capacity_]),
+      blank_previous_(new Eigen::Vector2d[blank_walls_ ? kMaxBlankPerScan : 1]),
+      blank_current_(new Eigen::Vector2d[blank_walls_ ? kMaxBlankPerScan : 1]) {}
 
 int RecentObstacles::bin_of(double bearing_rad) {
   const double turns = (bearing_rad + core::kPi) / (2.0 * core::kPi);
@@ -53,6 +56,8 @@ void RecentObstacles::observe(const SeenObstacles& seen) {
   last_scan_layer_ = layer;
   forget_seen_past(*seen.scan, layer);
   keep_columns(*seen.scan, layer, seen.time_s);
+  std::swap(blank_previous_, blank_current_);
+  blank_previous_size_ = blank_current_size_;
 }
 
 // Per bearing bin the nearest range any of its columns measured (an obstacle's, or a free
@@ -94,11 +99,16 @@ void RecentObstacles::drop_oldest(std::size_t count) {
 
 void RecentObstacles::keep_columns(const core::DepthScan& scan, const core::Pose2& layer, double time_s) {
   Eigen::Vector2d last = Eigen::Vector2d::Constant(1e9);
+  blank_current_size_ = 0;
   for (const core::DepthScanColumn& column : scan.columns) {
     if (column.kind != core::DepthScanColumn::Kind::obstacle) continue;
-    if (!column.obstacle_at_camera_height && !(blank_walls_ && column.blank_wall)) continue;
+    const bool blank = blank_walls_ && !column.obstacle_at_camera_height &&
+                       column.blank_wall != core::DepthScanColumn::BlankWall::no;
+    if (!column.obstacle_at_camera_height && !blank) continue;
     const Eigen::Vector2d robot_xy(column.x_robot_m, column.y_robot_m);
-    if ((robot_xy - scan.origin_robot).norm() > range_m_ || (robot_xy - last).norm() < kPointSpacing_m) continue;
+    if ((robot_xy - scan.origin_robot).norm() > range_m_) continue;
+    if (blank && !confirmed_blank(layer.transform_point(robot_xy))) continue;
+    if ((robot_xy - last).norm() < kPointSpacing_m) continue;
     last = robot_xy;
     if (size_ == capacity_) {
       // Full: the oldest quarter goes at once (one move, not one per point).
@@ -109,6 +119,17 @@ void RecentObstacles::keep_columns(const core::DepthScan& scan, const core::Pose
     points_[size_++] = Point{layer.transform_point(robot_xy), time_s, driven_m_};
     ++kept_;
   }
+}
+
+// Remembers a blank-wall point of the scan being kept; true when the previous scan had one
+// within kBlankConfirm_m of it.
+bool RecentObstacles::confirmed_blank(const Eigen::Vector2d& layer_xy) {
+  if (blank_current_size_ < kMaxBlankPerScan) blank_current_[blank_current_size_++] = layer_xy;
+  for (std::size_t i = 0; i < blank_previous_size_; ++i) {
+    if ((blank_previous_[i] - layer_xy).squaredNorm() <= kBlankConfirm_m * kBlankConfirm_m) return true;
+  }
+  ++blank_unconfirmed_;
+  return false;
 }
 
 bool RecentObstacles::outlived(const Point& point, double time_s) const {

@@ -249,11 +249,11 @@ void ObstacleScanner::compute(const cv::Mat& disparity, const cv::Mat& left, dou
     } else if (state.has_wall_base && wall_base_agrees_with_stereo(state)) {
       out = {static_cast<float>(state.wall_base.x_m), static_cast<float>(state.wall_base.y_m),
              core::DepthScanColumn::Kind::obstacle, visible_from, false, measurable};
-      out.blank_wall = true;
+      out.blank_wall = core::DepthScanColumn::BlankWall::base;
     } else if (state.has_floor && floor_ends_at_unseen_surface(state) && blank_above_floor_end(disparity, state)) {
       out = {static_cast<float>(state.farthest_floor.x_m), static_cast<float>(state.farthest_floor.y_m),
              core::DepthScanColumn::Kind::obstacle, visible_from, false, measurable};
-      out.blank_wall = true;
+      out.blank_wall = core::DepthScanColumn::BlankWall::floor_end;
     } else if (state.has_floor) {
       out = {static_cast<float>(state.farthest_floor.x_m), static_cast<float>(state.farthest_floor.y_m),
              core::DepthScanColumn::Kind::free, visible_from, false, measurable};

@@ -207,28 +207,54 @@ TEST(RecentObstacles, LowObstaclesAndFarSurfacesAreNotKept) {
   EXPECT_EQ(recent.held(), 0U);
 }
 
+core::DepthScan blank_wall_ahead(double ahead_m, double width_m) {
+  core::DepthScan scan = wall_ahead(ahead_m, width_m, /*at_camera_height=*/false);
+  for (core::DepthScanColumn& c : scan.columns) c.blank_wall = core::DepthScanColumn::BlankWall::base;
+  return scan;
+}
+
 // A door's jamb in a blank wall: the scan puts it at the wall's base, not measured at the
-// camera's height. Kept with recent_obstacle_blank_walls only; a low box never.
-TEST(RecentObstacles, BlankWallColumnsAreKeptWithTheirKeyOnly) {
-  core::DepthScan blank_jamb = wall_ahead(1.0, 0.4, /*at_camera_height=*/false);
-  for (core::DepthScanColumn& c : blank_jamb.columns) c.blank_wall = true;
+// camera's height. Kept with recent_obstacle_blank_walls only, once the scan before saw it
+// too; a low box never.
+TEST(RecentObstacles, BlankWallColumnsSeenTwiceAreKeptWithTheirKeyOnly) {
+  const core::DepthScan blank_jamb = blank_wall_ahead(1.0, 0.4);
   const core::DepthScan box = wall_ahead(1.5, 0.4, /*at_camera_height=*/false);
   core::ExploreConfig config = recent_config();
   RecentObstacles without(config, 60, 60);
   without.observe(seen_at(blank_jamb, core::Pose2{}, 1.0));
+  without.observe(seen_at(blank_jamb, core::Pose2{}, 1.5));
   EXPECT_EQ(without.held(), 0U);
   config.recent_obstacle_blank_walls = true;
   RecentObstacles with(config, 60, 60);
   with.observe(seen_at(box, core::Pose2{}, 1.0));
+  with.observe(seen_at(box, core::Pose2{}, 1.5));
   EXPECT_EQ(with.held(), 0U);
   with.observe(seen_at(blank_jamb, core::Pose2{}, 2.0));
+  EXPECT_EQ(with.held(), 0U);  // once: not yet
+  EXPECT_GT(with.blank_unconfirmed(), 0U);
+  // Seen again 0.04 m nearer, the robot having driven 0.04 m: the same place in the layer.
+  const core::DepthScan again = blank_wall_ahead(0.96, 0.4);
+  with.observe(seen_at(again, core::Pose2{0.04, 0.0, 0.0}, 2.5));
   EXPECT_GT(with.held(), 0U);
   // Placed by the odometry: the estimate 0.3 m off across the way does not move it.
   const TestGrid grid(60, 60, CellState::free);
   const core::Pose2 estimate{2.0, 3.3, 0.0};
-  const GridView stamped = with.stamp(grid.view(), estimate, core::Pose2{}, 3.0);
-  EXPECT_TRUE(occupied_at(stamped, Eigen::Vector2d(3.0, 3.3)));
-  EXPECT_FALSE(occupied_at(stamped, Eigen::Vector2d(3.0, 2.6)));
+  const GridView stamped = with.stamp(grid.view(), estimate, core::Pose2{0.04, 0.0, 0.0}, 3.0);
+  EXPECT_TRUE(occupied_at(stamped, Eigen::Vector2d(2.96, 3.3)));
+  EXPECT_FALSE(occupied_at(stamped, Eigen::Vector2d(2.96, 2.6)));
+}
+
+// A brightness step on the floor that a scan takes for a wall's base once (seen through a door)
+// and the next scan does not: never kept.
+TEST(RecentObstacles, ABlankWallPointOfOneScanAloneIsNotKept) {
+  core::ExploreConfig config = recent_config();
+  config.recent_obstacle_blank_walls = true;
+  RecentObstacles recent(config, 60, 60);
+  recent.observe(seen_at(blank_wall_ahead(1.2, 0.3), core::Pose2{}, 1.0));
+  recent.observe(seen_at(blank_wall_ahead(1.6, 0.3), core::Pose2{}, 1.5));  // elsewhere
+  recent.observe(seen_at(floor_ahead(2.0, 0.3, 0.5), core::Pose2{}, 2.0));
+  EXPECT_EQ(recent.held(), 0U);
+  EXPECT_GT(recent.blank_unconfirmed(), 0U);
 }
 
 TEST(RecentObstacles, PointsExpireAndAStrayPointMarksNoCell) {

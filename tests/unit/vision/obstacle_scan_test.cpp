@@ -109,7 +109,7 @@ TEST(ObstacleScan, TenCentimetreBoxShowsUp) {
     ASSERT_EQ(column.kind, Kind::obstacle) << "column " << x;
     EXPECT_NEAR(column.x_robot_m, 1.5, 0.01);
     EXPECT_FALSE(column.obstacle_at_camera_height) << "column " << x;  // out of view when near
-    EXPECT_FALSE(column.blank_wall) << "column " << x;                 // measured
+    EXPECT_EQ(column.blank_wall, core::DepthScanColumn::BlankWall::no) << "column " << x;  // measured
   }
   // Columns far to the side see only floor.
   EXPECT_EQ(scan.columns[20].kind, Kind::free);
@@ -158,7 +158,7 @@ TEST(ObstacleScan, ABlankWallIsAnObstacleWhereTheFloorEnds) {
     const core::DepthScanColumn& column = scan.columns[static_cast<std::size_t>(x)];
     ASSERT_EQ(column.kind, Kind::obstacle) << "column " << x;
     EXPECT_NEAR(column.x_robot_m, 1.3, 0.05) << "column " << x;
-    EXPECT_TRUE(column.blank_wall) << "column " << x;
+    EXPECT_EQ(column.blank_wall, core::DepthScanColumn::BlankWall::floor_end) << "column " << x;
     EXPECT_FALSE(column.obstacle_at_camera_height) << "column " << x;
   }
   ObstacleScanParams off;
@@ -206,7 +206,7 @@ TEST(ObstacleScan, ABlankWallFacedHeadOnStandsWhereItsBaseIs) {
     const core::DepthScanColumn& column = scan.columns[static_cast<std::size_t>(x)];
     ASSERT_EQ(column.kind, Kind::obstacle) << "column " << x;
     EXPECT_NEAR(column.x_robot_m, 1.5, 0.02) << "column " << x;
-    EXPECT_TRUE(column.blank_wall) << "column " << x;
+    EXPECT_EQ(column.blank_wall, core::DepthScanColumn::BlankWall::base) << "column " << x;
     // ... on the column's own ray from the right camera (image x to the right is robot y < 0).
     const StereoCalibration camera;
     EXPECT_NEAR(std::atan2(column.y_robot_m - scan.origin_robot.y(), column.x_robot_m - scan.origin_robot.x()),

@@ -77,10 +77,12 @@ struct DepthScanColumn {
   // A free column: the standard deviation of its end point's range from the disparity error
   // (the farthest floor point may lie beyond the wall behind it by about this); 0 otherwise.
   float end_range_sigma_m = 0.0F;
-  // An obstacle column put where a blank wall meets the floor (its base's brightness step, or
-  // where the matched floor ends under a view the matcher found blank): a surface stereo did
-  // not measure, which would stand at the camera's height too had it any texture.
-  bool blank_wall = false;
+  // An obstacle column put where a blank wall meets the floor, a surface stereo did not
+  // measure (it would stand at the camera's height too had it any texture): at its base's
+  // brightness step, or where the matched floor ends under a view the matcher found blank
+  // (0.3-0.6 m short of the wall, or where stereo was confused).
+  enum class BlankWall : std::uint8_t { no = 0, base = 1, floor_end = 2 };
+  BlankWall blank_wall = BlankWall::no;
 };
 
 struct DepthScan {
