@@ -1,6 +1,6 @@
 #include "stereoscout/vision/dense_disparity_kernels.hpp"
 
-#include <algorithm>
+#include <cstddef>
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #include <immintrin.h>
@@ -9,202 +9,60 @@
 namespace stereoscout::vision::detail {
 namespace {
 
+// The bodies twice on x86: instrumented by the sanitizers (in a sanitizer build) for the
+// portable build of the kernels, and left alone for the instruction-set builds. The sanitizers'
+// checks in a loop stop it vectorising, and the instrumented matcher made the sanitizer
+// suite's rendered drives 30 times slower than the release build (docs/results.md, "CI and
+// build times"). Every access the checks would see in the instruction-set builds is one of
+// the same source, which the sanitizer suite checks in the portable build
+// (tests/unit/vision/dense_disparity_test.cpp). The attribute must be on the bodies as well
+// as on the functions they are inlined into: the checks are put in before inlining.
+namespace instrumented {
 #define STEREOSCOUT_KERNEL_BODY inline __attribute__((always_inline))
-
-// Bit 47 - k of a pixel's census is "neighbour k is darker than the centre", neighbours k in
-// row-major order of the 7x7 window without its centre. Built in bytes (8 neighbours each,
-// so the compares run 32 pixels to an AVX2 register instead of 4), over blocks of pixels
-// on the stack, then the six bytes are joined into the 64-bit word: the same bits.
-STEREOSCOUT_KERNEL_BODY void census_body(const std::uint8_t* image, std::size_t stride, int width, int height,
-                                         std::uint64_t* census) {
-  constexpr int kBlock = 64;
-  constexpr int kGroups = 6;  // 48 neighbours / 8
-  std::fill(census, census + static_cast<std::size_t>(width) * static_cast<std::size_t>(height), std::uint64_t{0});
-  const int first = kCensusRadius;
-  const int last = width - kCensusRadius;
-  for (int y = kCensusRadius; y < height - kCensusRadius; ++y) {
-    std::uint64_t* bits = census + static_cast<std::size_t>(y) * static_cast<std::size_t>(width);
-    for (int start = first; start < last; start += kBlock) {
-      const int count = std::min(kBlock, last - start);
-      std::uint8_t groups[kGroups][kBlock] = {};
-      const std::uint8_t* centre = image + static_cast<std::size_t>(y) * stride + start;
-      int neighbour_index = 0;
-      for (int dy = -kCensusRadius; dy <= kCensusRadius; ++dy) {
-        const std::uint8_t* row = image + static_cast<std::size_t>(y + dy) * stride + start;
-        for (int dx = -kCensusRadius; dx <= kCensusRadius; ++dx) {
-          if (dx == 0 && dy == 0) {
-            continue;
-          }
-          std::uint8_t* __restrict group = groups[neighbour_index / 8];
-          const std::uint8_t* neighbour = row + dx;
-          for (int i = 0; i < count; ++i) {
-            const unsigned darker = static_cast<unsigned>(neighbour[i] < centre[i]);
-            group[i] = static_cast<std::uint8_t>((static_cast<unsigned>(group[i]) << 1U) | darker);
-          }
-          ++neighbour_index;
-        }
-      }
-      std::uint64_t* __restrict out = bits + start;
-      for (int i = 0; i < count; ++i) {
-        std::uint64_t word = 0;
-        for (int g = 0; g < kGroups; ++g) {
-          word = (word << 8U) | groups[g][i];
-        }
-        out[i] = word;
-      }
-    }
-  }
-}
-
-// Integer popcount is exact, so the hardware instruction gives the portable result.
-STEREOSCOUT_KERNEL_BODY void census_costs_body(const std::uint64_t* left, const std::uint64_t* right,
-                                               std::uint8_t* out, int first, int width, int d) {
-  for (int x = first; x < width; ++x) {
-    out[x] = static_cast<std::uint8_t>(__builtin_popcountll(left[x] ^ right[x - d]));
-  }
-}
-
-STEREOSCOUT_KERNEL_BODY void add_costs_body(std::uint16_t* __restrict sums, const std::uint8_t* __restrict costs,
-                                            std::size_t count) {
-  for (std::size_t i = 0; i < count; ++i) {
-    sums[i] = static_cast<std::uint16_t>(sums[i] + costs[i]);
-  }
-}
-
-STEREOSCOUT_KERNEL_BODY void subtract_costs_body(std::uint16_t* __restrict sums, const std::uint8_t* __restrict costs,
-                                                 std::size_t count) {
-  for (std::size_t i = 0; i < count; ++i) {
-    sums[i] = static_cast<std::uint16_t>(sums[i] - costs[i]);
-  }
-}
-
-// Box sums by doubling: P1 = the column sums, P2k[i] = Pk[i] + Pk[i + k], and a window of
-// w = 2 radius + 1 columns is the sum of the P's of w's binary digits side by side (w = 7:
-// P4 + P2 + P1, 4 additions per element instead of 6). Straight loops without a carried
-// dependency, so they vectorise; integer sums, so the grouping does not change the result.
-STEREOSCOUT_KERNEL_BODY void box_sum_body(const std::uint16_t* column_sums, std::uint16_t* aggregated,
-                                          std::uint16_t* scratch, int disparities, int width, int radius) {
-  const int window = 2 * radius + 1;
-  const int outputs = width - window + 1;  // x = radius + i, i in [0, outputs)
-  if (outputs <= 0) {
-    return;
-  }
-  for (int d = 0; d < disparities; ++d) {
-    const std::uint16_t* levels[kMaxBoxLevels + 1] = {};
-    levels[0] = column_sums + static_cast<std::size_t>(d) * static_cast<std::size_t>(width);
-    int top = 0;
-    for (int span = 1; 2 * span <= window; span *= 2) {
-      const std::uint16_t* previous = levels[top];
-      std::uint16_t* __restrict next = scratch + static_cast<std::size_t>(top) * static_cast<std::size_t>(width);
-      for (int i = 0; i + 2 * span <= width; ++i) {
-        next[i] = static_cast<std::uint16_t>(previous[i] + previous[i + span]);
-      }
-      levels[++top] = next;
-    }
-    std::uint16_t* __restrict out =
-        aggregated + static_cast<std::size_t>(d) * static_cast<std::size_t>(width) + static_cast<std::size_t>(radius);
-    int offset = 0;
-    bool first = true;
-    for (int level = top; level >= 0; --level) {
-      const int span = 1 << level;
-      if ((window & span) == 0) {
-        continue;
-      }
-      const std::uint16_t* part = levels[level] + offset;
-      if (first) {
-        for (int i = 0; i < outputs; ++i) {
-          out[i] = part[i];
-        }
-        first = false;
-      } else {
-        for (int i = 0; i < outputs; ++i) {
-          out[i] = static_cast<std::uint16_t>(out[i] + part[i]);
-        }
-      }
-      offset += span;
-    }
-  }
-}
-
-// Disparities ascend, and only a strictly lower cost replaces a winner, so ties go to the
-// smaller disparity.
-STEREOSCOUT_KERNEL_BODY void winners_body(const WinnerBuffers& b) {
-  constexpr std::uint16_t kNoCost = 0xFFFF;
-  const auto width = static_cast<std::size_t>(b.width);
-  std::fill(b.best_cost, b.best_cost + width, kNoCost);
-  std::fill(b.second_cost, b.second_cost + width, kNoCost);
-  std::fill(b.best_disparity, b.best_disparity + width, std::int16_t{0});
-  std::fill(b.right_best_cost, b.right_best_cost + width, kNoCost);
-  std::fill(b.right_best_disparity, b.right_best_disparity + width, std::int16_t{-1});
-  std::uint16_t* __restrict best_cost = b.best_cost;
-  std::int16_t* __restrict best_disparity = b.best_disparity;
-  std::uint16_t* __restrict right_cost = b.right_best_cost;
-  std::int16_t* __restrict right_disparity = b.right_best_disparity;
-  for (int d = 0; d < b.disparities; ++d) {
-    const std::uint16_t* costs = b.aggregated + static_cast<std::size_t>(d) * width;
-    const auto disparity = static_cast<std::int16_t>(d);
-    // Left pixel x searches d <= x - first_x.
-    for (int x = b.first_x + d; x <= b.last_x; ++x) {
-      const bool better = costs[x] < best_cost[x];
-      best_cost[x] = better ? costs[x] : best_cost[x];
-      best_disparity[x] = better ? disparity : best_disparity[x];
-    }
-    // Right pixel xr pairs with left pixel xr + d.
-    const std::uint16_t* shifted = costs + d;
-    for (int xr = b.first_x; xr + d <= b.last_x; ++xr) {
-      const bool better = shifted[xr] < right_cost[xr];
-      right_cost[xr] = better ? shifted[xr] : right_cost[xr];
-      right_disparity[xr] = better ? disparity : right_disparity[xr];
-    }
-  }
-  const std::int16_t* __restrict best = b.best_disparity;
-  std::uint16_t* __restrict second = b.second_cost;
-  for (int d = 0; d < b.disparities; ++d) {
-    const std::uint16_t* costs = b.aggregated + static_cast<std::size_t>(d) * width;
-    const auto disparity = static_cast<std::int16_t>(d);
-    for (int x = b.first_x + d; x <= b.last_x; ++x) {
-      // |d - best| > 1 with signed 16-bit compares (SSE2 has no unsigned ones).
-      const auto gap = static_cast<std::int16_t>(disparity - best[x]);
-      const int far = static_cast<int>(gap > 1) | static_cast<int>(gap < -1);
-      // kNoCost where adjacent: an OR with all ones, so the load is unconditional (vectorises).
-      const auto masked = static_cast<std::uint16_t>(costs[x] | static_cast<std::uint16_t>(far - 1));
-      second[x] = masked < second[x] ? masked : second[x];
-    }
-  }
-}
+#include "dense_disparity_kernel_bodies.inc"
+#undef STEREOSCOUT_KERNEL_BODY
+}  // namespace instrumented
 
 // One build of every kernel per instruction set; the bodies are inlined into each.
-#define STEREOSCOUT_DEFINE_KERNELS(SUFFIX, ATTRIBUTES)                                                             \
-  ATTRIBUTES void census_##SUFFIX(const std::uint8_t* image, std::size_t stride, int width, int height,            \
-                                  std::uint64_t* census) {                                                         \
-    census_body(image, stride, width, height, census);                                                             \
-  }                                                                                                                \
-  ATTRIBUTES void census_costs_##SUFFIX(const std::uint64_t* left, const std::uint64_t* right, std::uint8_t* out,  \
-                                        int first, int width, int d) {                                             \
-    census_costs_body(left, right, out, first, width, d);                                                          \
-  }                                                                                                                \
-  ATTRIBUTES void add_costs_##SUFFIX(std::uint16_t* sums, const std::uint8_t* costs, std::size_t count) {          \
-    add_costs_body(sums, costs, count);                                                                            \
-  }                                                                                                                \
-  ATTRIBUTES void subtract_costs_##SUFFIX(std::uint16_t* sums, const std::uint8_t* costs, std::size_t count) {     \
-    subtract_costs_body(sums, costs, count);                                                                       \
-  }                                                                                                                \
-  ATTRIBUTES void box_sum_##SUFFIX(const std::uint16_t* column_sums, std::uint16_t* aggregated,                    \
-                                   std::uint16_t* scratch, int disparities, int width, int radius) {               \
-    box_sum_body(column_sums, aggregated, scratch, disparities, width, radius);                                    \
-  }                                                                                                                \
-  ATTRIBUTES void winners_##SUFFIX(const WinnerBuffers& buffers) { winners_body(buffers); }                        \
-  DenseKernels kernels_##SUFFIX() {                                                                                \
-    return {census_##SUFFIX, census_costs_##SUFFIX, add_costs_##SUFFIX, subtract_costs_##SUFFIX,                   \
-            box_sum_##SUFFIX,  winners_##SUFFIX,      #SUFFIX};                                                     \
+#define STEREOSCOUT_DEFINE_KERNELS(SUFFIX, ATTRIBUTES, BODIES)                                                       \
+  ATTRIBUTES void census_##SUFFIX(const std::uint8_t* image, std::size_t stride, int width, int height,              \
+                                  std::uint64_t* census) {                                                           \
+    BODIES::census_body(image, stride, width, height, census);                                                       \
+  }                                                                                                                  \
+  ATTRIBUTES void census_costs_##SUFFIX(const std::uint64_t* left, const std::uint64_t* right, std::uint8_t* out,    \
+                                        int first, int width, int d) {                                               \
+    BODIES::census_costs_body(left, right, out, first, width, d);                                                    \
+  }                                                                                                                  \
+  ATTRIBUTES void add_costs_##SUFFIX(std::uint16_t* sums, const std::uint8_t* costs, std::size_t count) {            \
+    BODIES::add_costs_body(sums, costs, count);                                                                      \
+  }                                                                                                                  \
+  ATTRIBUTES void subtract_costs_##SUFFIX(std::uint16_t* sums, const std::uint8_t* costs, std::size_t count) {       \
+    BODIES::subtract_costs_body(sums, costs, count);                                                                 \
+  }                                                                                                                  \
+  ATTRIBUTES void box_sum_##SUFFIX(const std::uint16_t* column_sums, std::uint16_t* aggregated,                      \
+                                   std::uint16_t* scratch, int disparities, int width, int radius) {                 \
+    BODIES::box_sum_body(column_sums, aggregated, scratch, disparities, width, radius);                              \
+  }                                                                                                                  \
+  ATTRIBUTES void winners_##SUFFIX(const WinnerBuffers& buffers) { BODIES::winners_body(buffers); }                  \
+  DenseKernels kernels_##SUFFIX() {                                                                                  \
+    return {census_##SUFFIX, census_costs_##SUFFIX, add_costs_##SUFFIX, subtract_costs_##SUFFIX,                     \
+            box_sum_##SUFFIX,  winners_##SUFFIX,      #SUFFIX};                                                      \
   }
 
-STEREOSCOUT_DEFINE_KERNELS(portable, )
+STEREOSCOUT_DEFINE_KERNELS(portable, , instrumented)
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #define STEREOSCOUT_HAS_AVX2_KERNELS 1
-STEREOSCOUT_DEFINE_KERNELS(popcnt, __attribute__((target("popcnt"))))
-STEREOSCOUT_DEFINE_KERNELS(avx2, __attribute__((target("avx2,popcnt"))))
+#define STEREOSCOUT_UNSANITIZED __attribute__((no_sanitize("address", "undefined")))
+namespace unsanitized {
+#define STEREOSCOUT_KERNEL_BODY inline __attribute__((always_inline)) STEREOSCOUT_UNSANITIZED
+#include "dense_disparity_kernel_bodies.inc"
+#undef STEREOSCOUT_KERNEL_BODY
+}  // namespace unsanitized
+
+// The hand-written intrinsics below stay instrumented.
+STEREOSCOUT_DEFINE_KERNELS(popcnt, __attribute__((target("popcnt"))) STEREOSCOUT_UNSANITIZED, unsanitized)
+STEREOSCOUT_DEFINE_KERNELS(avx2, __attribute__((target("avx2,popcnt"))) STEREOSCOUT_UNSANITIZED, unsanitized)
 
 // Census costs of 16 pixels at a time in AVX2 registers: the popcount of each byte of
 // left ^ right from a 16-entry table (vpshufb on both nibbles), summed per 64-bit census by
@@ -244,7 +102,8 @@ __attribute__((target("avx2,popcnt"))) void census_costs_avx2_table(const std::u
 // The same with AVX-512: eight censuses to a register and the popcount instruction for
 // 64-bit lanes (VPOPCNTQ), narrowed to bytes in pixel order.
 #define STEREOSCOUT_AVX512_TARGET "avx512f,avx512bw,avx512vl,avx512vpopcntdq,avx2,popcnt"
-STEREOSCOUT_DEFINE_KERNELS(avx512, __attribute__((target(STEREOSCOUT_AVX512_TARGET))))
+STEREOSCOUT_DEFINE_KERNELS(avx512, __attribute__((target(STEREOSCOUT_AVX512_TARGET))) STEREOSCOUT_UNSANITIZED,
+                           unsanitized)
 
 __attribute__((target(STEREOSCOUT_AVX512_TARGET))) void census_costs_avx512_popcount(const std::uint64_t* left,
                                                                                      const std::uint64_t* right,
