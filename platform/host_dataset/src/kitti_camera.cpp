@@ -6,7 +6,7 @@
 
 namespace stereoscout::host_dataset {
 
-core::Status KittiCamera::capture(core::StereoFrame& frame) {
+core::Status KittiCamera::grab(core::StereoFrame& frame) {
   if (finished()) return {core::StatusCode::not_available, "KITTI sequence finished"};
   const std::size_t index = next_++;
   const KittiCalibration& calibration = sequence_.calibration;

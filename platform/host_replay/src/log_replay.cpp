@@ -117,7 +117,7 @@ void LogReplay::deliver(const log::LogRecord& record) {
   }
 }
 
-core::Status LogReplay::ReplayCamera::capture(core::StereoFrame& frame) {
+core::Status LogReplay::ReplayCamera::grab(core::StereoFrame& frame) {
   replay_.pump();
   if (!replay_.has_frame_) {
     return {core::StatusCode::not_available, "no logged frame due yet"};

@@ -194,25 +194,43 @@ bool Simulator::pop_odometry(OdometrySample& sample) {
 SimCamera::SimCamera(Simulator& simulator, StereoRenderer& renderer)
     : simulator_(simulator), renderer_(renderer), start_ns_(simulator.time_ns()), next_frame_ns_(simulator.time_ns()) {}
 
-core::Status SimCamera::capture(core::StereoFrame& frame) { return capture_with_depth(frame, nullptr); }
+core::Status SimCamera::grab(core::StereoFrame& frame) {
+  if (simulator_.time_ns() < next_frame_ns_) return {core::StatusCode::not_available, "no new stereo pair yet"};
+  grabbed_.true_pose = simulator_.true_pose();
+  grabbed_.pan_rad = simulator_.pan_rad();
+  grabbed_.time_s = simulator_.time_s();
+  grabbed_.frame_index = static_cast<std::uint32_t>(frames_);
+  grabbed_.pending = true;
+  simulator_.note_frame_captured();
+  frame.timestamp_ns = simulator_.time_ns();
+  frame.sequence = frames_++;
+  frame.pan_rad = grabbed_.pan_rad;
+  // Pairs come at a fixed cadence from the camera's start; a late capture gets the newest
+  // pair and the next one comes at the next tick of the cadence (no bursts).
+  const core::CameraConfig& camera = simulator_.camera_config();
+  const auto period_ns = std::max<std::int64_t>(1, std::llround(1e9 / camera.frame_rate_hz));
+  next_frame_ns_ = start_ns_ + ((simulator_.time_ns() - start_ns_) / period_ns + 1) * period_ns;
+  return core::Status::success();
+}
+
+core::Status SimCamera::retrieve(core::StereoFrame& frame) { return render_grabbed(frame, nullptr); }
 
 core::Status SimCamera::capture_with_depth(core::StereoFrame& frame, cv::Mat* depth_right) {
-  if (simulator_.time_ns() < next_frame_ns_) return {core::StatusCode::not_available, "no new stereo pair yet"};
+  const core::Status grabbed = grab(frame);
+  return grabbed.ok() ? render_grabbed(frame, depth_right) : grabbed;
+}
+
+core::Status SimCamera::render_grabbed(core::StereoFrame& frame, cv::Mat* depth_right) {
+  if (!grabbed_.pending) return {core::StatusCode::invalid_input, "no stereo pair grabbed to render"};
   const core::CameraConfig& camera = simulator_.camera_config();
   if (frame.left.rows != camera.height_px || frame.left.cols != camera.width_px || frame.left.type() != CV_8UC1 ||
       frame.right.rows != camera.height_px || frame.right.cols != camera.width_px || frame.right.type() != CV_8UC1) {
     return {core::StatusCode::invalid_input, "frame images not allocated at the camera size"};
   }
-  renderer_.render(simulator_.true_pose(), simulator_.pan_rad(), simulator_.time_s(), static_cast<std::uint32_t>(frames_),
-                   frame.left, frame.right, depth_right);
-  simulator_.note_frame_captured();
-  frame.timestamp_ns = simulator_.time_ns();
-  frame.sequence = frames_++;
-  frame.pan_rad = simulator_.pan_rad();
-  // Pairs come at a fixed cadence from the camera's start; a late capture gets the newest
-  // pair and the next one comes at the next tick of the cadence (no bursts).
-  const auto period_ns = std::max<std::int64_t>(1, std::llround(1e9 / camera.frame_rate_hz));
-  next_frame_ns_ = start_ns_ + ((simulator_.time_ns() - start_ns_) / period_ns + 1) * period_ns;
+  renderer_.render(grabbed_.true_pose, grabbed_.pan_rad, grabbed_.time_s, grabbed_.frame_index, frame.left,
+                   frame.right, depth_right);
+  grabbed_.pending = false;
+  ++rendered_;
   return core::Status::success();
 }
 

@@ -83,7 +83,7 @@ core::Status StereoCapture::no_pair_yet() {
   return {core::StatusCode::not_available, "no new stereo pair"};
 }
 
-core::Status StereoCapture::capture(core::StereoFrame& frame) {
+core::Status StereoCapture::grab(core::StereoFrame& frame) {
   return side_by_side_ ? capture_side_by_side(frame) : capture_pair(frame);
 }
 

@@ -391,7 +391,55 @@ TEST(Simulator, CameraDeliversFramesAtItsRateOnSimulatedTime) {
   clock.sleep_until(clock.now_ns() + std::int64_t{3'000'000'000} / 15 + 1'000'000'000 / 30);
   EXPECT_TRUE(sim_camera.capture(frame).ok());
   EXPECT_EQ(sim_camera.capture(frame).code, core::StatusCode::not_available);
+  EXPECT_EQ(sim_camera.frames_grabbed(), 3U);
   EXPECT_EQ(sim_camera.frames_rendered(), 3U);
+}
+
+// The stack renders only the pairs it keeps: a pair grabbed, then rendered after the robot
+// moved on (and after pairs grabbed but never rendered), must be the pair as it was when
+// grabbed, pixel for pixel: the same as from a camera that rendered every pair at once.
+TEST(Simulator, APairRenderedOnlyWhenRetrievedIsThePairAsGrabbed) {
+  const WorldLoad load = load_world(testing::source_path("config/worlds/lab.yaml"));
+  ASSERT_TRUE(load.ok()) << load.error_text();
+  const core::CameraConfig camera;
+  auto drive = [](Simulator& simulator, int step) {
+    simulator.command({0.12, step % 2 == 0 ? 0.15 : -0.1});
+    simulator.command_pan(0.2 * step);
+    simulator.step(0.1);
+  };
+  Simulator every_sim(load.world, core::RobotConfig{}, camera, core::SimConfig{}, 5);
+  StereoRenderer every_renderer(load.world, camera, core::SimConfig{}, 5);
+  SimCamera every(every_sim, every_renderer);
+  Simulator lazy_sim(load.world, core::RobotConfig{}, camera, core::SimConfig{}, 5);
+  StereoRenderer lazy_renderer(load.world, camera, core::SimConfig{}, 5);
+  SimCamera lazy(lazy_sim, lazy_renderer);
+  core::StereoFrame whole;
+  core::StereoFrame grabbed;
+  whole.allocate(camera.width_px, camera.height_px);
+  grabbed.allocate(camera.width_px, camera.height_px);
+  int compared = 0;
+  for (int step = 0; step < 12; ++step) {
+    ASSERT_TRUE(every.capture(whole).ok());
+    ASSERT_TRUE(lazy.grab(grabbed).ok());
+    EXPECT_EQ(grabbed.sequence, whole.sequence);
+    EXPECT_EQ(grabbed.timestamp_ns, whole.timestamp_ns);
+    EXPECT_EQ(grabbed.pan_rad, whole.pan_rad);
+    const bool keep = step % 4 == 3;
+    drive(every_sim, step);
+    drive(lazy_sim, step);
+    if (!keep) continue;
+    const core::AllocationScope scope;
+    ASSERT_TRUE(lazy.retrieve(grabbed).ok());  // the robot has moved on since the grab
+    EXPECT_EQ(scope.allocations(), 0U);
+    EXPECT_EQ(cv::norm(grabbed.left, whole.left, cv::NORM_INF), 0.0) << "step " << step;
+    EXPECT_EQ(cv::norm(grabbed.right, whole.right, cv::NORM_INF), 0.0) << "step " << step;
+    ++compared;
+  }
+  EXPECT_EQ(compared, 3);
+  EXPECT_EQ(lazy.frames_grabbed(), 12U);
+  EXPECT_EQ(lazy.frames_rendered(), 3U);
+  // Nothing grabbed since the last render: nothing to render.
+  EXPECT_EQ(lazy.retrieve(grabbed).code, core::StatusCode::invalid_input);
 }
 
 TEST(Simulator, ClosedLoopRunIsByteIdenticalForTheSameSeedAndCommands) {

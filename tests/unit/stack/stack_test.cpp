@@ -63,7 +63,7 @@ class ScriptedRobot final : public platform::Camera, public platform::Odometry, 
     }
   }
 
-  core::Status capture(core::StereoFrame& frame) override {
+  core::Status grab(core::StereoFrame& frame) override {
     if (now_ns_ < next_frame_ns_) return {core::StatusCode::not_available, "no pair yet"};
     next_frame_ns_ += kSecond / 15;
     texture_.copyTo(frame.left);

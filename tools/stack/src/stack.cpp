@@ -279,8 +279,10 @@ core::Status Stack::safety() {
   return core::Status::success();
 }
 
+// Every pair is grabbed (its time and pan angle); only a pair the stack keeps is retrieved
+// (its images: the simulator renders them then).
 core::Status Stack::capture() {
-  const core::Status status = board_.camera->capture(capture_frame_);
+  const core::Status status = board_.camera->grab(capture_frame_);
   if (status.code == core::StatusCode::not_available) return core::Status::success();
   if (!status.ok()) {
     ++counters_.capture_failures;
@@ -291,6 +293,11 @@ core::Status Stack::capture() {
   if (frame_waiting_ || frame_unlogged_) {
     ++counters_.frames_skipped_busy;
     return core::Status::success();
+  }
+  const core::Status retrieved = board_.camera->retrieve(capture_frame_);
+  if (!retrieved.ok()) {
+    ++counters_.capture_failures;
+    return retrieved;
   }
   std::swap(capture_frame_, kept_frame_);  // swaps image headers: no copy, no allocation
   ++counters_.frames_kept;

@@ -1,6 +1,6 @@
 #pragma once
 // A KITTI odometry folder played through the platform Camera interface: one rectified pair per
-// capture, in frame order, stamped with times.txt. image_0 is KITTI's left camera, image_1 the
+// grab(), in frame order, stamped with times.txt. image_0 is KITTI's left camera, image_1 the
 // right. A pair that cannot be read (missing file, not an image, wrong size) is skipped and
 // counted; its path is kept for the caller's message. Host tool: reading a PNG allocates.
 
@@ -18,7 +18,7 @@ class KittiCamera : public platform::Camera {
 
   // ok: `frame` holds pair `next_frame() - 1`. io_error / invalid_input: that pair was
   // skipped (see last_failed_path()); the next call moves on. not_available: sequence over.
-  core::Status capture(core::StereoFrame& frame) override;
+  core::Status grab(core::StereoFrame& frame) override;
   void command_pan(double /*pan_rad*/) override {}  // KITTI's cameras do not pan
 
   std::size_t next_frame() const { return next_; }

@@ -36,7 +36,7 @@ struct LogReplayStats {
   std::uint64_t odometry = 0;
   std::uint64_t gpio_events = 0;
   std::uint64_t invalid_records = 0;   // intact but undecodable (wrong size, NaN)
-  std::uint64_t frames_superseded = 0;  // a newer frame arrived before capture() took one
+  std::uint64_t frames_superseded = 0;  // a newer frame arrived before grab() took one
   std::uint64_t odometry_overflow = 0;  // queue full: oldest reading dropped
 };
 
@@ -91,7 +91,7 @@ class LogReplay {
   class ReplayCamera final : public platform::Camera {
    public:
     explicit ReplayCamera(LogReplay& replay) : replay_(replay) {}
-    core::Status capture(core::StereoFrame& frame) override;
+    core::Status grab(core::StereoFrame& frame) override;
     void command_pan(double) override {}  // the log holds the pan angle each frame had
    private:
     LogReplay& replay_;

@@ -149,23 +149,40 @@ class Simulator {
 };
 
 // A camera that delivers a new pair every 1 / camera.frame_rate_hz of simulated time,
-// rendered from the simulator's true pose, pan angle and time (people move).
+// rendered from the simulator's true pose, pan angle and time (people move). grab() notes
+// them; retrieve() renders the pair as it was then. The image noise is keyed by the frame's
+// sequence number, so a pair is the same whether or not the pairs before it were rendered,
+// and the stack renders only the one pair in several it keeps.
 class SimCamera final : public platform::Camera {
  public:
   // The renderer must have been made for the simulator's world and camera config.
   SimCamera(Simulator& simulator, StereoRenderer& renderer);
-  core::Status capture(core::StereoFrame& frame) override;
-  // The same, also writing the ground-truth depth of the right image (CV_32FC1, metres).
+  core::Status grab(core::StereoFrame& frame) override;
+  core::Status retrieve(core::StereoFrame& frame) override;
+  // capture(), also writing the ground-truth depth of the right image (CV_32FC1, metres).
   core::Status capture_with_depth(core::StereoFrame& frame, cv::Mat* depth_right);
   void command_pan(double pan_rad) override { simulator_.command_pan(pan_rad); }
-  std::uint64_t frames_rendered() const { return frames_; }
+  std::uint64_t frames_grabbed() const { return frames_; }
+  std::uint64_t frames_rendered() const { return rendered_; }
 
  private:
+  // What retrieve() renders: the scene as grab() found it.
+  struct Grabbed {
+    core::Pose2 true_pose;
+    double pan_rad = 0.0;
+    double time_s = 0.0;
+    std::uint32_t frame_index = 0;
+    bool pending = false;  // grabbed and not yet rendered
+  };
+  core::Status render_grabbed(core::StereoFrame& frame, cv::Mat* depth_right);
+
   Simulator& simulator_;
   StereoRenderer& renderer_;
   std::int64_t start_ns_ = 0;
   std::int64_t next_frame_ns_ = 0;
   std::uint64_t frames_ = 0;
+  std::uint64_t rendered_ = 0;
+  Grabbed grabbed_;
 };
 
 class SimOdometry final : public platform::Odometry {

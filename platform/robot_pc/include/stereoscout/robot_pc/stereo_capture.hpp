@@ -2,10 +2,11 @@
 // The robot's stereo camera (platform::Camera) over V4L2: two synchronised devices whose
 // frames are paired by timestamp, or one device delivering left|right side by side.
 //
-// capture() never waits. It takes what the drivers have ready, pairs left and right frames
+// grab() never waits. It takes what the drivers have ready, pairs left and right frames
 // whose timestamps agree within the tolerance, drops (and counts) a frame that has no
 // partner, counts driver sequence gaps as dropped frames, and reports a timeout once no pair
-// has arrived for the configured time.
+// has arrived for the configured time. It converts the pair into the frame's images at once
+// (the driver's buffers go back to it), so retrieve() has nothing left to do.
 
 #include <cstdint>
 #include <string>
@@ -28,7 +29,7 @@ struct StereoCaptureStats {
   std::uint64_t pairs = 0;
   std::uint64_t unpaired_dropped = 0;  // frames discarded for want of a partner
   std::uint64_t driver_dropped = 0;    // frames the driver skipped (sequence gaps)
-  std::uint64_t timeouts = 0;          // capture() calls that reported a timeout
+  std::uint64_t timeouts = 0;          // grab() calls that reported a timeout
   std::uint64_t bad_frames = 0;        // buffers too short for the format
   std::uint64_t device_errors = 0;
   std::uint64_t pan_commands_ignored = 0;
@@ -46,7 +47,7 @@ class StereoCapture final : public platform::Camera {
   bool start(std::string& error);
   void stop();
 
-  core::Status capture(core::StereoFrame& frame) override;
+  core::Status grab(core::StereoFrame& frame) override;
   // robot_pc drives no pan unit: the command is counted and the frame reports pan 0.
   void command_pan(double pan_rad) override;
 
