@@ -258,6 +258,30 @@ TEST_F(StackRun, WithTheBuildingsAxesTheWallsLearnThemAndTheRunReplaysTheSame) {
   expect_replay_gives_the_outputs_of("live");
 }
 
+// vision.scan_parallel (the default): the dense scan runs on a thread of its own beside the
+// filter update. The outputs are those of the sequential run (all but the log, which records
+// the config), and the loop still does not touch the heap.
+TEST_F(StackRun, TheScanOnAThreadOfItsOwnGivesTheOutputsOfTheSequentialRun) {
+  ASSERT_EQ(explore("parallel").exit_code, 0);
+  std::string sequential = config_text((dir_ / "world.yaml").string());
+  const std::string gate = "identity_gate: false}";
+  ASSERT_NE(sequential.find(gate), std::string::npos);
+  sequential.replace(sequential.find(gate), gate.size(), "identity_gate: false, scan_parallel: false}");
+  std::ofstream(dir_ / "sequential.yaml") << sequential;
+  const test::CommandResult run = test::run_stereoscout("explore --config " + (dir_ / "sequential.yaml").string() +
+                                                        " --out " + (dir_ / "sequential").string());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  std::map<std::string, std::string> parallel_outputs = output_digests(report("parallel"));
+  std::map<std::string, std::string> sequential_outputs = output_digests(report("sequential"));
+  ASSERT_EQ(parallel_outputs.erase("sensors.log"), 1U);
+  ASSERT_EQ(sequential_outputs.erase("sensors.log"), 1U);
+  EXPECT_GE(parallel_outputs.size(), 8U);
+  EXPECT_EQ(parallel_outputs, sequential_outputs);
+  EXPECT_GT(report_number(report("parallel"), "updates"), 10.0);
+  EXPECT_EQ(report_number(report("parallel"), "heap_allocations_in_loop"), 0.0);
+  EXPECT_EQ(report_number(report("sequential"), "heap_allocations_in_loop"), 0.0);
+}
+
 TEST_F(StackRun, ReplayGivesTheLiveOutputsAndSurvivesDamage) {
   const test::CommandResult live = explore("live");
   ASSERT_EQ(live.exit_code, 0) << live.output;

@@ -117,6 +117,7 @@ Stack::Stack(const core::SystemConfig& config, const StackOptions& options, cons
   }
   vision_->allocate_scan(scan_);
   vision_->allocate_scan(seen_scan_);
+  if (config.vision.scan_parallel) scan_worker_ = std::make_unique<core::Worker>();
   wall_params_ = slam::wall_line_params_from_config(config.filter);
   filter_ = std::make_unique<slam::ParticleFilter>(filter_config_for(config.filter, options.localization), mount_,
                                                    static_cast<std::uint64_t>(config.run.seed));
@@ -390,12 +391,15 @@ core::Status Stack::observation_update() {
                                observations_.size());
     }
   }
-  if (!vision_->scan(kept_frame_, scan_).ok()) ++counters_.vision_failures;
+  start_scan();  // beside the filter update, once SIFT's two threads are done; finished before any return
   slam::WallLine wall;
-  const bool wall_seen = filter_->config().manhattan_heading_sigma_deg > 0.0 && slam::fit_wall_line(scan_, wall_params_, wall);
+  const bool use_wall = filter_->config().manhattan_heading_sigma_deg > 0.0;
+  if (use_wall) finish_scan();  // the filter needs the scan's wall
+  const bool wall_seen = use_wall && slam::fit_wall_line(scan_, wall_params_, wall);
   const slam::UpdateResult result = filter_->update(
       at_frame, slam::ObservationList{observations_.data(), observations_.size()}, kept_frame_.pan_rad,
       wall_seen ? &wall : nullptr);
+  finish_scan();
   if (!result.status.ok()) {
     ++counters_.updates_refused;  // the filter carries the motion over to the next update
     return result.status;
@@ -410,6 +414,30 @@ core::Status Stack::observation_update() {
   rollup_due_ = true;
   ++counters_.updates;
   return core::Status::success();
+}
+
+// The kept pair's dense disparity and scan, on the scan worker while SIFT and the filter
+// update run (they touch neither scan_ nor the front end's dense matcher), or here.
+void Stack::start_scan() {
+  scan_pending_ = true;
+  if (scan_worker_) {
+    scan_worker_->start(&Stack::run_scan, this);
+  } else {
+    run_scan(this);
+  }
+}
+
+void Stack::run_scan(void* self) {
+  auto* stack = static_cast<Stack*>(self);
+  stack->scan_status_ = stack->vision_->scan(stack->kept_frame_, stack->scan_);
+}
+
+// Waits for the scan started last and counts its failure, once.
+void Stack::finish_scan() {
+  if (!scan_pending_) return;
+  if (scan_worker_) scan_worker_->wait();
+  scan_pending_ = false;
+  if (!scan_status_.ok()) ++counters_.vision_failures;
 }
 
 // The scan's obstacles at the camera's height, placed with the pose the grid uses for this

@@ -8,7 +8,11 @@
 // Everything is sized at construction from config and the calibration. After that only
 // cv::SIFT allocates (its pyramid, inside OpenCV); matching, triangulation, the index, the
 // dense matcher and the scan do not touch the heap.
+// observe_landmarks() and scan() use disjoint parts of the front end, so the stack runs them
+// on the same pair on two threads at once (vision.scan_parallel); only rejected_frames() is
+// shared, and it is atomic.
 
+#include <atomic>
 #include <cstdint>
 
 #include <opencv2/core/mat.hpp>
@@ -94,7 +98,7 @@ class VisionFrontEnd {
   cv::Mat disparity_;
   ObstacleScanner scanner_;
   std::uint64_t frame_counter_ = 0;
-  std::uint64_t rejected_frames_ = 0;
+  std::atomic<std::uint64_t> rejected_frames_{0};
   FrontEndFrameStats frame_stats_;
   const core::TimeSource* stopwatch_ = nullptr;
 };

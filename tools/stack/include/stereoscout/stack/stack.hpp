@@ -32,6 +32,7 @@
 #include "stereoscout/core/logging.hpp"
 #include "stereoscout/core/ring_buffer.hpp"
 #include "stereoscout/core/system_config.hpp"
+#include "stereoscout/core/worker.hpp"
 #include "stereoscout/explore/explorer.hpp"
 #include "stereoscout/log/records.hpp"
 #include "stereoscout/log/writer.hpp"
@@ -182,11 +183,14 @@ class Stack {
   static core::Status run_replan(void* self);
   static core::Status run_drive(void* self);
   static core::Status run_logging(void* self);
+  static void run_scan(void* self);
 
   core::Status safety();
   core::Status capture();
   core::Status odometry();
   core::Status observation_update();
+  void start_scan();
+  void finish_scan();
   void keep_seen_obstacles(std::int64_t frame_ns, double pan_rad);
   core::Status grid_rollup();
   core::Status replan();
@@ -259,6 +263,12 @@ class Stack {
   StopReason stop_reason_ = StopReason::running;
   bool started_ = false;
   bool finished_ = false;
+
+  // vision.scan_parallel: the kept pair's dense scan runs here while the update goes on. Last,
+  // so that it is destroyed (its job waited for) before what the job uses.
+  std::unique_ptr<core::Worker> scan_worker_;
+  core::Status scan_status_;   // written by the scan's job
+  bool scan_pending_ = false;  // started, not yet finished
 };
 
 }  // namespace stereoscout::stack

@@ -26,6 +26,8 @@ struct VisionConfig {
   double sift_edge_threshold = 10.0;
   double sift_sigma = 1.6;
   bool sift_parallel = true;
+  // The dense disparity and the scan on a thread of their own in the observation update.
+  bool scan_parallel = true;
   // Descriptor index.
   double index_match_distance = 180.0;
   int index_bucket_size = 16;
@@ -74,6 +76,7 @@ inline void describe(ConfigVisitor& v, VisionConfig& c) {
   v.number("sift_edge_threshold", c.sift_edge_threshold, {1.0, 100.0, "", "SIFT rejects edge-like extrema with a curvature ratio above this (Lowe 10)."});
   v.number("sift_sigma", c.sift_sigma, {0.5, 5.0, "px", "Blur of the first SIFT octave (Lowe 1.6)."});
   v.boolean("sift_parallel", c.sift_parallel, "Run SIFT on the left and right image in two threads (results are identical to the sequential run).");
+  v.boolean("scan_parallel", c.scan_parallel, "Run the dense disparity and the 2.5D scan of a kept pair on a thread of their own, beside SIFT and the filter update (results are identical to the sequential run). Off: one thread fewer, for a single-core computer.");
   v.number("index_match_distance", c.index_match_distance, {1.0, 1000.0, "", "Largest Euclidean distance between a key's descriptor and an index entry for the key to take that entry's identity (SIFT descriptors have norm 512)."});
   v.integer_field("index_bucket_size", c.index_bucket_size, {2, 256, "", "Descriptors in one KD-tree leaf before it splits."});
   v.boolean("index_box_distance", c.index_box_distance, "Best-bin-first search orders the tree's cells by their exact distance from the key (over every dimension the path to the cell splits), and stops at the match distance, where no entry can match. Off (the default): by the largest gap in any one dimension, a looser bound. On random descriptors the exact one needs fewer leaves for a key seen from the same place and finds a few more of the keys seen from elsewhere (vision_bench BM_IndexLookup, docs/results.md); not yet run in the whole stack.");

@@ -1,0 +1,84 @@
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdint>
+#include <thread>
+
+#include "stereoscout/core/allocation_counter.hpp"
+#include "stereoscout/core/worker.hpp"
+
+namespace stereoscout::core {
+namespace {
+
+struct Tally {
+  std::uint64_t runs = 0;
+  std::uint64_t sum = 0;
+  std::thread::id ran_on;
+};
+
+void count(void* context) {
+  auto* tally = static_cast<Tally*>(context);
+  tally->ran_on = std::this_thread::get_id();
+  ++tally->runs;
+  for (std::uint64_t i = 1; i <= 1000; ++i) tally->sum += i;
+}
+
+TEST(Worker, RunsTheJobOnItsOwnThreadAndWaitSeesWhatItWrote) {
+  Worker worker;
+  Tally tally;
+  worker.start(count, &tally);
+  worker.wait();
+  EXPECT_FALSE(worker.busy());
+  EXPECT_EQ(tally.runs, 1U);
+  EXPECT_EQ(tally.sum, 500500U);
+  EXPECT_NE(tally.ran_on, std::this_thread::get_id());
+}
+
+TEST(Worker, JobAfterJobNoneLostAndNoAllocation) {
+  Worker worker;
+  Tally tally;
+  const AllocationScope scope;
+  for (int i = 0; i < 2000; ++i) {
+    worker.start(count, &tally);
+    worker.wait();
+    ASSERT_EQ(tally.runs, static_cast<std::uint64_t>(i + 1));
+  }
+  EXPECT_EQ(scope.allocations(), 0U);
+  EXPECT_EQ(tally.sum, 2000U * 500500U);
+}
+
+TEST(Worker, WaitWithoutAJobReturnsAtOnce) {
+  Worker worker;
+  worker.wait();
+  EXPECT_FALSE(worker.busy());
+}
+
+// The caller goes on while the job runs: the job blocks until the caller releases it.
+void wait_for_release(void* context) {
+  auto* released = static_cast<std::atomic<bool>*>(context);
+  while (!released->load()) std::this_thread::yield();
+}
+
+TEST(Worker, TheCallerGoesOnWhileTheJobRunsAndTheDestructorWaitsForIt) {
+  std::atomic<bool> released{false};
+  {
+    Worker worker;
+    worker.start(wait_for_release, &released);
+    EXPECT_TRUE(worker.busy());  // the job cannot end before the release below
+    released = true;
+  }  // the destructor waits for the job, then stops the thread
+  EXPECT_TRUE(released.load());
+}
+
+TEST(WorkerDeathTest, SecondStartWhileBusyIsAProgrammingError) {
+  GTEST_FLAG_SET(death_test_style, "threadsafe");  // the worker's thread runs in this process
+  std::atomic<bool> released{false};
+  Worker worker;
+  worker.start(wait_for_release, &released);
+  EXPECT_DEATH(worker.start(wait_for_release, &released), "still running");
+  released = true;
+  worker.wait();
+}
+
+}  // namespace
+}  // namespace stereoscout::core
