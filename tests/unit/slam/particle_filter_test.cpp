@@ -202,6 +202,50 @@ TEST(ParticleFilter, UpdatesDoNotTouchTheHeap) {
   EXPECT_GT(filter.counters().resamplings, 0u);
 }
 
+// filter.background_release: the maps resampling dropped are released on a worker thread
+// between updates, in the order the update would have released them. The pools hand out the
+// same slots in the same order, so the run is the synchronous run: the same trajectory, map
+// and weights, and the same slot numbers and pool counts after every update.
+TEST(ParticleFilter, TheBackgroundReleaseGivesTheSynchronousRunSlotForSlot) {
+  auto config_with = [](bool background) {
+    core::FilterConfig config = small_config(60);
+    config.resample_ess_fraction = 0.9;  // resample at almost every update
+    config.motion_noise_translation_per_m = 0.1;
+    config.motion_noise_rotation_per_rad = 0.1;
+    config.background_release = background;
+    return config;
+  };
+  ParticleFilter background(config_with(true), core::CameraMount{}, 21);
+  ParticleFilter synchronous(config_with(false), core::CameraMount{}, 21);
+  background.start(odometry_at(0, true_pose(0)), true_pose(0));
+  synchronous.start(odometry_at(0, true_pose(0)), true_pose(0));
+  for (int step = 1; step <= 30; ++step) {
+    const auto observations = observe_all(true_pose(step), Eigen::Isometry3d::Identity(), 12, step, 0.05);
+    const UpdateResult a =
+        background.update(odometry_at(step, true_pose(step)), as_list(observations), Eigen::Isometry3d::Identity());
+    const UpdateResult b =
+        synchronous.update(odometry_at(step, true_pose(step)), as_list(observations), Eigen::Isometry3d::Identity());
+    ASSERT_EQ(a.resampled, b.resampled) << "step " << step;
+    // landmarks() waits for the release still running.
+    ASSERT_EQ(background.landmarks().nodes_in_use(), synchronous.landmarks().nodes_in_use()) << "step " << step;
+    ASSERT_EQ(background.landmarks().estimates_in_use(), synchronous.landmarks().estimates_in_use());
+    ASSERT_EQ(background.landmarks().node_stats().high_water, synchronous.landmarks().node_stats().high_water);
+    ASSERT_EQ(background.ml_map().root, synchronous.ml_map().root) << "step " << step;
+    for (std::size_t slot = 0; slot < background.particle_count(); ++slot) {
+      ASSERT_EQ(background.particle(slot).map.root, synchronous.particle(slot).map.root) << "step " << step;
+      ASSERT_EQ(background.particle(slot).log_weight, synchronous.particle(slot).log_weight);
+    }
+  }
+  EXPECT_GT(background.counters().resamplings, 20u);
+  auto exported = [](const ParticleFilter& filter) {
+    std::ostringstream out;
+    write_tum_trajectory(out, filter.trajectory(), filter.ml_trajectory_node());
+    write_landmarks_ply(out, filter.landmarks(), filter.ml_map(), 1);
+    return out.str();
+  };
+  EXPECT_EQ(exported(background), exported(synchronous));
+}
+
 TEST(ParticleFilter, RestartReleasesEveryNodeAndTheTrajectoryKeepsItsAncestry) {
   core::FilterConfig config = small_config(64);
   config.resample_ess_fraction = 0.9;

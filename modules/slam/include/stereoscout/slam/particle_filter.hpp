@@ -19,6 +19,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 
 #include <Eigen/Geometry>
 
@@ -27,6 +28,7 @@
 #include "stereoscout/core/geometry.hpp"
 #include "stereoscout/core/messages.hpp"
 #include "stereoscout/core/status.hpp"
+#include "stereoscout/core/worker.hpp"
 #include "stereoscout/slam/landmark_map.hpp"
 #include "stereoscout/slam/manhattan_frame.hpp"
 #include "stereoscout/slam/motion_model.hpp"
@@ -133,7 +135,11 @@ class ParticleFilter {
   double effective_sample_size() const;
   std::uint32_t update_index() const { return update_index_; }
 
-  const LandmarkStore& landmarks() const { return landmarks_; }
+  // Waits for a release of dropped maps still running (filter.background_release).
+  const LandmarkStore& landmarks() const {
+    settle();
+    return landmarks_;
+  }
   TrajectoryTree& trajectory() { return trajectory_; }
   const TrajectoryTree& trajectory() const { return trajectory_; }
   const FilterCounters& counters() const { return counters_; }
@@ -142,6 +148,9 @@ class ParticleFilter {
 
  private:
   void release_particles(core::FixedVector<Particle>& particles);
+  void release_dropped(core::FixedVector<Particle>& dropped);
+  static void release_dropped_maps(void* self);
+  void settle() const;
   void predict(const core::Pose2& motion);
   std::size_t prepare_observations(ObservationList observations, const Eigen::Isometry3d& robot_from_sensor);
   // What one update's summed log-likelihoods are scaled by (filter.independent_observations).
@@ -177,6 +186,10 @@ class ParticleFilter {
   TrajectoryNodeHandle estimate_node_;  // retained
   ManhattanFrame manhattan_frame_;
   FilterCounters counters_;
+  // filter.background_release: releases *spare_'s maps after a resampling. Last, so that it
+  // is destroyed (its job waited for) before the pools the job works on.
+  std::unique_ptr<core::Worker> release_worker_;
+  core::FixedVector<Particle>* dropped_ = nullptr;  // what it releases
 };
 
 }  // namespace stereoscout::slam

@@ -8,6 +8,8 @@ struct FilterConfig {
   int particles = 1000;
   int particle_capacity = 5000;
   double resample_ess_fraction = 0.5;
+  // The maps of the particles resampling dropped are released on a thread of their own.
+  bool background_release = true;
   double association_gate_chi2 = 11.345;
   double min_log_likelihood = -10.0;
   double motion_noise_translation_per_m = 0.05;
@@ -39,6 +41,7 @@ inline void describe(ConfigVisitor& v, FilterConfig& c) {
   v.integer_field("particles", c.particles, {1, 1000000, "", "Particles in the filter (paper 1000, up to 2000)."});
   v.integer_field("particle_capacity", c.particle_capacity, {1, 1000000, "", "Size of the particle pool fixed at start-up."});
   v.number("resample_ess_fraction", c.resample_ess_fraction, {0.0, 1.0, "", "Resample when the effective sample size falls below this fraction of the particles."});
+  v.boolean("background_release", c.background_release, "Release the landmark maps of the particles resampling dropped on a thread of their own, between one update and the next (the next update, and anything that reads the landmarks, waits for it), in the same order as in the update: the pools, and so every result, are as without it. Off: one thread fewer, and the update does the release itself.");
   v.number("association_gate_chi2", c.association_gate_chi2, {0.1, 1000.0, "", "Mahalanobis gate for data association (3 DOF, 99%: 11.345)."});
   v.number("min_log_likelihood", c.min_log_likelihood, {-1000.0, 0.0, "", "Floor on one observation's log-likelihood, so one outlier cannot kill a particle. At the gate's -chi2/2 (-5.6725) an observation outside the gate would weigh every particle alike: office seed 1 kept its pose, but the office's coverage fell and MRCLAM robot 1 lost its map on two seeds of three, whose identities are right and whose observations outside the gate say the pose is wrong (docs/results.md), so -10."});
   v.number("motion_noise_translation_per_m", c.motion_noise_translation_per_m, {0.0, 2.0, "m/m", "Standard deviation of translation noise per metre driven."});
