@@ -258,27 +258,40 @@ TEST_F(StackRun, WithTheBuildingsAxesTheWallsLearnThemAndTheRunReplaysTheSame) {
   expect_replay_gives_the_outputs_of("live");
 }
 
-// vision.scan_parallel (the default): the dense scan runs on a thread of its own beside the
-// filter update. The outputs are those of the sequential run (all but the log, which records
-// the config), and the loop still does not touch the heap.
-TEST_F(StackRun, TheScanOnAThreadOfItsOwnGivesTheOutputsOfTheSequentialRun) {
-  ASSERT_EQ(explore("parallel").exit_code, 0);
-  std::string sequential = config_text((dir_ / "world.yaml").string());
-  const std::string gate = "identity_gate: false}";
-  ASSERT_NE(sequential.find(gate), std::string::npos);
-  sequential.replace(sequential.find(gate), gate.size(), "identity_gate: false, scan_parallel: false}");
-  std::ofstream(dir_ / "sequential.yaml") << sequential;
-  const test::CommandResult run = test::run_stereoscout("explore --config " + (dir_ / "sequential.yaml").string() +
-                                                        " --out " + (dir_ / "sequential").string());
-  ASSERT_EQ(run.exit_code, 0) << run.output;
-  std::map<std::string, std::string> parallel_outputs = output_digests(report("parallel"));
+// vision.scan_parallel and filter.background_release (the defaults): the dense scan runs on a
+// thread of its own beside the filter update, and the maps resampling dropped are released on
+// another between updates. The outputs are those of the run with both off (all but the log,
+// which records the config), and the loop still does not touch the heap.
+TEST_F(StackRun, TheScanAndTheReleaseOnThreadsOfTheirOwnGiveTheOutputsOfTheSequentialRun) {
+  // Resampling at almost every update once the robot drives (after its first look), so that
+  // there are dropped maps to release.
+  const std::string often = "filter: {resample_ess_fraction: 0.99, ";
+  std::string parallel = config_text((dir_ / "world.yaml").string());
+  auto replace = [](std::string& text, const std::string& from, const std::string& to) {
+    ASSERT_NE(text.find(from), std::string::npos) << from;
+    text.replace(text.find(from), from.size(), to);
+  };
+  replace(parallel, "filter: {", often);
+  replace(parallel, "max_time_s: 12", "max_time_s: 20");
+  std::string sequential = parallel;
+  replace(sequential, "identity_gate: false}", "identity_gate: false, scan_parallel: false}");
+  replace(sequential, often, often + "background_release: false, ");
+  for (const auto& [name, text] : {std::pair<std::string, std::string>{"parallel", parallel}, {"sequential", sequential}}) {
+    std::ofstream(dir_ / (name + ".yaml")) << text;
+    const test::CommandResult run = test::run_stereoscout("explore --config " + (dir_ / (name + ".yaml")).string() +
+                                                          " --out " + (dir_ / name).string());
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+  }
+  const std::string parallel_report = report("parallel");
+  std::map<std::string, std::string> parallel_outputs = output_digests(parallel_report);
   std::map<std::string, std::string> sequential_outputs = output_digests(report("sequential"));
   ASSERT_EQ(parallel_outputs.erase("sensors.log"), 1U);
   ASSERT_EQ(sequential_outputs.erase("sensors.log"), 1U);
   EXPECT_GE(parallel_outputs.size(), 8U);
   EXPECT_EQ(parallel_outputs, sequential_outputs);
-  EXPECT_GT(report_number(report("parallel"), "updates"), 10.0);
-  EXPECT_EQ(report_number(report("parallel"), "heap_allocations_in_loop"), 0.0);
+  EXPECT_GT(report_number(parallel_report, "updates"), 10.0);
+  EXPECT_GT(report_number(parallel_report, "resamplings"), 5.0);
+  EXPECT_EQ(report_number(parallel_report, "heap_allocations_in_loop"), 0.0);
   EXPECT_EQ(report_number(report("sequential"), "heap_allocations_in_loop"), 0.0);
 }
 
