@@ -93,10 +93,10 @@ struct UpdateRecord {
 };
 
 struct StackCounters {
-  std::uint64_t frames_captured = 0;
-  std::uint64_t frames_kept = 0;
+  std::uint64_t frames_captured = 0;      // pairs grabbed (Camera::grab)
+  std::uint64_t frames_kept = 0;          // of them, retrieved (their images) for an update
   std::uint64_t frames_skipped_busy = 0;   // the camera moved but the last kept pair was still waiting
-  std::uint64_t capture_failures = 0;      // timeout / io error from the camera
+  std::uint64_t capture_failures = 0;      // timeout / io error from the camera (grab or retrieve)
   std::uint64_t frames_expired = 0;        // kept pair older than the odometry history: dropped
   std::uint64_t odometry_readings = 0;
   std::uint64_t odometry_rejected = 0;      // not finite, or not newer than the last: skipped
