@@ -53,31 +53,42 @@ TEST(Worker, WaitWithoutAJobReturnsAtOnce) {
   EXPECT_FALSE(worker.busy());
 }
 
-// The caller goes on while the job runs: the job blocks until the caller releases it.
+// The caller goes on while the job runs: the job blocks until the caller releases it, then
+// works a little longer before it says it has finished.
+struct Gate {
+  std::atomic<bool> released{false};
+  std::atomic<bool> finished{false};
+};
+
 void wait_for_release(void* context) {
-  auto* released = static_cast<std::atomic<bool>*>(context);
-  while (!released->load()) std::this_thread::yield();
+  auto* gate = static_cast<Gate*>(context);
+  while (!gate->released.load()) std::this_thread::yield();
+  for (int i = 0; i < 100; ++i) std::this_thread::yield();
+  gate->finished = true;
 }
 
 TEST(Worker, TheCallerGoesOnWhileTheJobRunsAndTheDestructorWaitsForIt) {
-  std::atomic<bool> released{false};
+  Gate gate;
   {
     Worker worker;
-    worker.start(wait_for_release, &released);
+    worker.start(wait_for_release, &gate);
     EXPECT_TRUE(worker.busy());  // the job cannot end before the release below
-    released = true;
+    EXPECT_FALSE(gate.finished.load());
+    gate.released = true;
   }  // the destructor waits for the job, then stops the thread
-  EXPECT_TRUE(released.load());
+  EXPECT_TRUE(gate.released.load());
+  EXPECT_TRUE(gate.finished.load());  // the job has finished when the destructor returns
 }
 
 TEST(WorkerDeathTest, SecondStartWhileBusyIsAProgrammingError) {
   GTEST_FLAG_SET(death_test_style, "threadsafe");  // the worker's thread runs in this process
-  std::atomic<bool> released{false};
+  Gate gate;
   Worker worker;
-  worker.start(wait_for_release, &released);
-  EXPECT_DEATH(worker.start(wait_for_release, &released), "still running");
-  released = true;
+  worker.start(wait_for_release, &gate);
+  EXPECT_DEATH(worker.start(wait_for_release, &gate), "still running");
+  gate.released = true;
   worker.wait();
+  EXPECT_TRUE(gate.finished.load());
 }
 
 }  // namespace

@@ -416,8 +416,8 @@ core::Status Stack::observation_update() {
   return core::Status::success();
 }
 
-// The kept pair's dense disparity and scan, on the scan worker while SIFT and the filter
-// update run (they touch neither scan_ nor the front end's dense matcher), or here.
+// The kept pair's dense disparity and scan, on the scan worker while the filter update runs
+// (it touches neither scan_ nor the front end's dense matcher), or here.
 void Stack::start_scan() {
   scan_pending_ = true;
   if (scan_worker_) {
