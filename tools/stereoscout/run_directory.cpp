@@ -256,6 +256,7 @@ void write_counters(report::JsonWriter& json, const stack::Stack& stack) {
       .unsigned_integer("odometry_rejected", c.odometry_rejected)
       .unsigned_integer("updates_refused", c.updates_refused)
       .unsigned_integer("vision_failures", c.vision_failures)
+      .unsigned_integer("near_obstacle_columns", c.near_obstacle_columns)
       .unsigned_integer("rollups", c.rollups)
       .unsigned_integer("replan_steps", c.replans)
       .unsigned_integer("drive_commands", c.drive_commands)

@@ -18,6 +18,7 @@ VisionFrontEnd::VisionFrontEnd(const core::VisionConfig& vision, const core::Rob
       right_keys_(max_keys_),
       matcher_(match_params_from_config(vision), calibration.height_px, max_keys_),
       matches_(max_keys_),
+      near_matches_(max_keys_),
       index_(index_params_from_config(vision)),
       dense_(dense_params_from_config(vision, calibration.baseline_m), calibration.width_px, calibration.height_px),
       scanner_(scan_params_from_config(vision, robot), calibration, mount) {
@@ -47,6 +48,7 @@ core::Status VisionFrontEnd::observe_landmarks(const core::StereoFrame& frame,
                                                core::FixedVector<core::LandmarkObservation>& observations) {
   observations.clear();
   frame_stats_ = FrontEndFrameStats{};
+  matches_valid_ = false;
   if (!frame_is_usable(frame)) {
     ++rejected_frames_;
     return {core::StatusCode::invalid_input, "stereo pair is not 8-bit grey of the calibrated size"};
@@ -56,6 +58,8 @@ core::Status VisionFrontEnd::observe_landmarks(const core::StereoFrame& frame,
   frame_stats_.sift_ns = now() - stage_start;
   stage_start = now();
   matcher_.match(left_keys_, right_keys_, matches_);
+  matches_valid_ = true;
+  matches_timestamp_ns_ = frame.timestamp_ns;
   frame_stats_.matching_ns = now() - stage_start;
   stage_start = now();
   const std::uint64_t frame_index = frame_counter_++;
@@ -93,9 +97,24 @@ core::Status VisionFrontEnd::scan(const core::StereoFrame& frame, core::DepthSca
     ++rejected_frames_;
     return {core::StatusCode::invalid_input, "stereo pair is not 8-bit grey of the calibrated size"};
   }
+  near_columns_ = 0;
   dense_.compute(frame.left, frame.right, disparity_);
   scanner_.compute(disparity_, frame.left, frame.pan_rad, frame.timestamp_ns, scan);
+  if (scanner_.near_matches_used() && matches_valid_ && matches_timestamp_ns_ == frame.timestamp_ns) {
+    add_near_matches(frame, scan);
+  }
   return core::Status::success();
+}
+
+void VisionFrontEnd::add_near_matches(const core::StereoFrame& frame, core::DepthScan& scan) {
+  near_matches_.clear();
+  for (const StereoMatch& match : matches_) {
+    const Keypoint& left = left_keys_[match.left_index];
+    ObstacleScanner::NearMatch* near = near_matches_.emplace_back();
+    if (near == nullptr) break;
+    *near = {left.x_px, left.y_px, match.disparity_px};
+  }
+  near_columns_ = scanner_.add_near_matches(near_matches_.data(), near_matches_.size(), disparity_, frame.pan_rad, scan);
 }
 
 }  // namespace stereoscout::vision

@@ -24,6 +24,9 @@ ObstacleScanParams scan_params_from_config(const core::VisionConfig& vision, con
   params.wall_base_within_m = vision.scan_wall_base_within_m;
   params.sigma_d_px = vision.sigma_d_px;
   params.floor_onto_plane = vision.scan_floor_onto_plane;
+  params.near_min_matches = vision.scan_near_min_matches;
+  params.max_near_matches = vision.max_features;
+  params.near_max_dense_valid = vision.scan_near_max_dense_valid;
   return params;
 }
 
@@ -70,6 +73,7 @@ ObstacleScanner::ObstacleScanner(const ObstacleScanParams& params, const StereoC
       nearest_(static_cast<std::size_t>(calibration.width_px) * per_column_),
       floor_visible_from_m_(static_cast<std::size_t>(calibration.width_px)),
       measurable_from_m_(static_cast<std::size_t>(calibration.width_px)),
+      near_(static_cast<std::size_t>(params.near_min_matches > 0 ? std::max(params.max_near_matches, 0) : 0)),
       horizon_row_(std::clamp(static_cast<int>(std::ceil(calibration.principal_y_px -
                                                           calibration.focal_px * std::tan(mount.tilt_rad))),
                               0, calibration.height_px - 1)) {
@@ -262,6 +266,85 @@ void ObstacleScanner::compute(const cv::Mat& disparity, const cv::Mat& left, dou
       out = {0.0F, 0.0F, core::DepthScanColumn::Kind::invalid, visible_from, false, measurable};
     }
   }
+}
+
+bool ObstacleScanner::dense_matcher_found_little(const cv::Mat& disparity, const NearMatch& match) const {
+  const auto cx = static_cast<int>(std::lround(match.x_left_px));
+  const auto cy = static_cast<int>(std::lround(match.y_px));
+  int pixels = 0;
+  int valid = 0;
+  for (int y = std::max(cy - kNearWindowRadius, 0); y <= std::min(cy + kNearWindowRadius, disparity.rows - 1); ++y) {
+    const float* row = disparity.ptr<float>(y);
+    for (int x = std::max(cx - kNearWindowRadius, 0); x <= std::min(cx + kNearWindowRadius, disparity.cols - 1); ++x) {
+      ++pixels;
+      valid += row[x] > 0.0F ? 1 : 0;
+    }
+  }
+  return pixels > 0 && valid <= params_.near_max_dense_valid * pixels;
+}
+
+// The matches nearer than the dense matcher reaches, above the floor and below the robot,
+// where it found little, as points on the floor plane filed under their right-image columns;
+// returns how many.
+std::size_t ObstacleScanner::near_points_of(const NearMatch* matches, std::size_t count, const cv::Mat& disparity,
+                                            const Eigen::Isometry3d& robot_from_camera) {
+  const Eigen::Vector3d origin = robot_from_camera.translation();
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < count && kept < near_.size(); ++i) {
+    const NearMatch& match = matches[i];
+    if (!(match.disparity_px > static_cast<float>(params_.max_disparity_px))) continue;
+    const double x_right = static_cast<double>(match.x_left_px) - match.disparity_px;
+    const auto column = static_cast<int>(std::lround(x_right));
+    if (column < 0 || column >= calibration_.width_px || !dense_matcher_found_little(disparity, match)) continue;
+    const Eigen::Vector3d point =
+        robot_from_camera * triangulate_point(calibration_, x_right, match.y_px, match.disparity_px);
+    if (!(point.z() > params_.floor_tolerance_m && point.z() < params_.robot_height_m)) continue;
+    const double range = std::hypot(point.x() - origin.x(), point.y() - origin.y());
+    const bool at_camera_height = std::fabs(point.z() - origin.z()) <= params_.floor_tolerance_m;
+    near_[kept++] = {column, range, point.x(), point.y(), at_camera_height};
+  }
+  return kept;
+}
+
+// At least near_min_matches of the first `count` near points (`point` among them) lie within
+// same_surface_depth_m of it on the floor.
+bool ObstacleScanner::near_point_supported(const NearPoint& point, std::size_t count) const {
+  const double reach2 = params_.same_surface_depth_m * params_.same_surface_depth_m;
+  int agreeing = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    const double dx = near_[i].x_m - point.x_m;
+    const double dy = near_[i].y_m - point.y_m;
+    if (dx * dx + dy * dy <= reach2 && ++agreeing >= params_.near_min_matches) return true;
+  }
+  return false;
+}
+
+std::size_t ObstacleScanner::add_near_matches(const NearMatch* matches, std::size_t count, const cv::Mat& disparity,
+                                              double pan_rad, core::DepthScan& scan) {
+  if (params_.near_min_matches <= 0) return 0;
+  STEREOSCOUT_CHECK(scan.columns.size() == static_cast<std::size_t>(calibration_.width_px) &&
+                        disparity.type() == CV_32FC1 && disparity.cols == calibration_.width_px &&
+                        disparity.rows == calibration_.height_px,
+                    "ObstacleScanner::add_near_matches: disparity or scan not sized for this camera");
+  const Eigen::Isometry3d robot_from_camera = core::robot_from_camera(mount_, pan_rad);
+  const Eigen::Vector2d origin = robot_from_camera.translation().head<2>();
+  const std::size_t near_count = near_points_of(matches, count, disparity, robot_from_camera);
+  std::size_t columns = 0;
+  for (std::size_t i = 0; i < near_count; ++i) {
+    const NearPoint& point = near_[i];
+    if (!near_point_supported(point, near_count)) continue;
+    core::DepthScanColumn& out = scan.columns[static_cast<std::size_t>(point.column)];
+    // A measured obstacle at least as near stays (a guessed blank wall does not).
+    const bool measured_obstacle =
+        out.kind == core::DepthScanColumn::Kind::obstacle && out.blank_wall == core::DepthScanColumn::BlankWall::no;
+    if (measured_obstacle && (Eigen::Vector2d(out.x_robot_m, out.y_robot_m) - origin).norm() <= point.range_m) continue;
+    const float visible_from = out.floor_visible_from_m;
+    const auto range = static_cast<float>(point.range_m);
+    out = {static_cast<float>(point.x_m), static_cast<float>(point.y_m), core::DepthScanColumn::Kind::obstacle,
+           visible_from, point.at_camera_height, std::min(out.measurable_from_m, range)};
+    ++columns;  // a column taken twice (a nearer match in it) is counted twice
+  }
+  return columns;
 }
 
 }  // namespace stereoscout::vision

@@ -153,6 +153,58 @@ TEST(VisionFrontEnd, BadPairIsSkippedAndCounted) {
   EXPECT_TRUE(observations.empty());
 }
 
+// A low box whose face is 0.45 m from the camera, nearer than the dense matcher reaches
+// (40 / 63 = 0.63 m): its columns hold it only from the SIFT matches (scan_near_min_matches),
+// where the box is (its face and the near edge of its top; the test's smooth texture gives
+// SIFT few keys that near), and nothing appears where the view holds only the floor.
+struct NearBoxColumns {
+  int on_box = 0;     // obstacle columns on the box
+  int elsewhere = 0;  // obstacle columns nearer than 1 m that are not on it
+};
+
+NearBoxColumns scan_near_box(int near_min_matches, std::uint64_t* allocations) {
+  const StereoCalibration camera;
+  test::Scene scene;
+  scene.boxes.push_back({{0.55, 0.0, 0.0}, {0.9, 0.4, 0.5}});  // below the camera at 0.6 m
+  const test::Rendering view = test::render(scene, camera, paper_mount(), core::Pose2{});
+  core::VisionConfig config = vision_config(1);
+  config.scan_near_min_matches = near_min_matches;
+  VisionFrontEnd front_end(config, core::RobotConfig{}, camera, paper_mount());
+  core::FixedVector<core::LandmarkObservation> observations(front_end.max_observations());
+  core::DepthScan scan;
+  front_end.allocate_scan(scan);
+  EXPECT_TRUE(front_end.observe_landmarks(view.frame, observations).ok());
+  {
+    const core::AllocationScope scope;
+    EXPECT_TRUE(front_end.scan(view.frame, scan).ok());
+    if (allocations != nullptr) *allocations = scope.allocations();
+  }
+  NearBoxColumns columns;
+  for (const core::DepthScanColumn& column : scan.columns) {
+    if (column.kind != core::DepthScanColumn::Kind::obstacle) continue;
+    const bool on_box = column.x_robot_m > 0.5 && column.x_robot_m < 0.95 && column.y_robot_m > -0.05 &&
+                        column.y_robot_m < 0.45;  // its footprint and 5 cm around
+    if (on_box) {
+      ++columns.on_box;
+    } else if (std::hypot(column.x_robot_m - scan.origin_robot.x(), column.y_robot_m - scan.origin_robot.y()) < 1.0) {
+      ++columns.elsewhere;
+    }
+  }
+  return columns;
+}
+
+TEST(VisionFrontEnd, SurfacesNearerThanTheDenseMatcherReachesComeFromTheStereoMatches) {
+  const NearBoxColumns dense_only = scan_near_box(0, nullptr);
+  std::uint64_t allocations = 1;
+  const NearBoxColumns with_matches = scan_near_box(3, &allocations);
+  std::printf("obstacle columns on the box: %d dense only, %d with the matches (%d, %d elsewhere within 1 m)\n",
+              dense_only.on_box, with_matches.on_box, dense_only.elsewhere, with_matches.elsewhere);
+  EXPECT_EQ(dense_only.on_box, 0);
+  EXPECT_GE(with_matches.on_box, 4);
+  EXPECT_EQ(with_matches.elsewhere, dense_only.elsewhere);
+  EXPECT_EQ(allocations, 0U);
+}
+
 // The dense path (block matcher and scan) does not allocate once built; SIFT does, inside
 // OpenCV, and the count is printed so the figure in docs/results.md can be checked.
 TEST(VisionFrontEnd, AllocationsPerFrame) {

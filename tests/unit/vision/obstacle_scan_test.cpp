@@ -1,7 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "stereoscout/core/allocation_counter.hpp"
 #include "stereoscout/vision/dense_disparity.hpp"
@@ -417,6 +419,58 @@ TEST(ObstacleScan, IsolatedMismatchesDoNotMakeObstacles) {
   disparity.at<float>(233, 140) = 40.0F;  // the fourth (scan_min_obstacle_pixels) confirms it
   scanner.compute(disparity, 0.0, 0, scan);
   EXPECT_EQ(scan.columns[100].kind, Kind::obstacle);
+}
+
+// Matches on a surface 0.45 m ahead (disparity 40 / 0.45 = 88.9 px, beyond the dense
+// matcher's 63) over open floor, in holes of the dense disparities as a surface that near
+// leaves: three that agree become their columns' obstacles. A match alone, three where the
+// dense matcher found the floor (a repeated texture matched a period off), and a match the
+// dense matcher reaches leave their columns as they were; so does a scanner with
+// near_min_matches 0.
+TEST(ObstacleScan, NearMatchesThatAgreeWhereTheDenseMatcherFoundLittleBecomeObstacles) {
+  ObstacleScanParams params;
+  params.near_min_matches = 3;
+  const StereoCalibration camera;
+  ObstacleScanner scanner(params, camera, paper_mount());
+  const test::Rendering view = test::render(test::Scene{}, camera, paper_mount(), core::Pose2{});
+  cv::Mat disparity = disparity_from_depth(view.left_depth, camera);
+  disparity(cv::Rect(320, 225, 30, 30)).setTo(kInvalidDisparity);
+  disparity(cv::Rect(550, 225, 20, 30)).setTo(kInvalidDisparity);
+  core::DepthScan dense_only;
+  scanner.allocate(dense_only);
+  scanner.compute(disparity, 0.0, 5, dense_only);
+  core::DepthScan scan = dense_only;
+  const float d = 40.0F / 0.45F;
+  const ObstacleScanner::NearMatch matches[] = {
+      {330.0F, 239.5F, d}, {334.0F, 239.5F, d}, {338.0F, 239.5F, d},  // three that agree, in the hole
+      {560.0F, 239.5F, d},                                            // alone, 0.26 m from them
+      {430.0F, 330.0F, d}, {434.0F, 330.0F, d}, {438.0F, 330.0F, d},  // where the floor was matched
+      {200.0F, 300.0F, 20.0F},                                        // 2 m away: the dense matcher's
+  };
+  scanner.add_near_matches(matches, 8, disparity, 0.0, scan);
+  std::vector<std::size_t> near_columns;
+  for (const float x_left : {330.0F, 334.0F, 338.0F}) {
+    const auto column = static_cast<std::size_t>(std::lround(x_left - d));
+    near_columns.push_back(column);
+    const core::DepthScanColumn& near = scan.columns[column];
+    ASSERT_EQ(dense_only.columns[column].kind, Kind::free);
+    ASSERT_EQ(near.kind, Kind::obstacle) << column;
+    EXPECT_NEAR(near.x_robot_m, 0.55, 1e-3);
+    EXPECT_TRUE(near.obstacle_at_camera_height);
+    EXPECT_NEAR(near.measurable_from_m, range_of(scan, near), 1e-5);
+    EXPECT_EQ(near.floor_visible_from_m, dense_only.columns[column].floor_visible_from_m);
+  }
+  for (std::size_t column = 0; column < scan.columns.size(); ++column) {
+    if (std::find(near_columns.begin(), near_columns.end(), column) != near_columns.end()) continue;
+    EXPECT_EQ(scan.columns[column].kind, dense_only.columns[column].kind) << column;
+    EXPECT_EQ(scan.columns[column].x_robot_m, dense_only.columns[column].x_robot_m) << column;
+  }
+  ObstacleScanner off(ObstacleScanParams{}, camera, paper_mount());
+  core::DepthScan untouched = dense_only;
+  off.add_near_matches(matches, 8, disparity, 0.0, untouched);
+  for (std::size_t column = 0; column < scan.columns.size(); ++column) {
+    EXPECT_EQ(untouched.columns[column].kind, dense_only.columns[column].kind) << column;
+  }
 }
 
 TEST(ObstacleScan, PanTurnsTheScanInTheRobotFrame) {

@@ -438,6 +438,7 @@ void Stack::finish_scan() {
   if (scan_worker_) scan_worker_->wait();
   scan_pending_ = false;
   if (!scan_status_.ok()) ++counters_.vision_failures;
+  if (scan_status_.ok()) counters_.near_obstacle_columns += vision_->last_near_columns();
 }
 
 // The scan's obstacles at the camera's height, placed with the pose the grid uses for this

@@ -8,9 +8,10 @@
 // Everything is sized at construction from config and the calibration. After that only
 // cv::SIFT allocates (its pyramid, inside OpenCV); matching, triangulation, the index, the
 // dense matcher and the scan do not touch the heap.
-// observe_landmarks() and scan() use disjoint parts of the front end, so the stack runs them
-// on the same pair on two threads at once (vision.scan_parallel); only rejected_frames() is
-// shared, and it is atomic.
+// scan() writes only the dense matcher's and the scanner's parts; with
+// vision.scan_near_min_matches it reads the stereo matches observe_landmarks() found in the
+// same pair. So the stack runs scan() on a thread of its own once observe_landmarks() has
+// returned, beside the filter update (vision.scan_parallel); rejected_frames() is atomic.
 
 #include <atomic>
 #include <cstdint>
@@ -65,11 +66,15 @@ class VisionFrontEnd {
   const core::FixedVector<Keypoint>& last_right_keys() const { return right_keys_; }
 
   void allocate_scan(core::DepthScan& scan) const { scanner_.allocate(scan); }
-  // Dense disparity and the 2.5D scan of this pair (scan sized by allocate_scan). A bad pair
-  // is skipped (scan unchanged), counted, and reported as invalid_input.
+  // Dense disparity and the 2.5D scan of this pair (scan sized by allocate_scan), with the
+  // surfaces nearer than the dense matcher reaches taken from the stereo matches when
+  // observe_landmarks() was called on this pair last (ObstacleScanner::add_near_matches). A
+  // bad pair is skipped (scan unchanged), counted, and reported as invalid_input.
   core::Status scan(const core::StereoFrame& frame, core::DepthScan& scan);
   std::uint64_t rejected_frames() const { return rejected_frames_; }
   const cv::Mat& last_disparity() const { return disparity_; }
+  // Scan columns the last scan() took from the stereo matches (vision.scan_near_min_matches).
+  std::size_t last_near_columns() const { return near_columns_; }
 
   const FrontEndFrameStats& last_frame_stats() const { return frame_stats_; }
   // Times each stage of observe_landmarks for reports. Measurement only: what the front end
@@ -82,6 +87,7 @@ class VisionFrontEnd {
   void extract_keys(const core::StereoFrame& frame);
   std::int64_t now() const;
   bool frame_is_usable(const core::StereoFrame& frame) const;
+  void add_near_matches(const core::StereoFrame& frame, core::DepthScan& scan);
 
   StereoCalibration calibration_;
   StereoNoise noise_;
@@ -93,6 +99,10 @@ class VisionFrontEnd {
   core::FixedVector<Keypoint> right_keys_;
   StereoMatcher matcher_;
   core::FixedVector<StereoMatch> matches_;
+  bool matches_valid_ = false;           // matches_ are of the pair stamped matches_timestamp_ns_
+  std::int64_t matches_timestamp_ns_ = 0;
+  core::FixedVector<ObstacleScanner::NearMatch> near_matches_;
+  std::size_t near_columns_ = 0;
   DescriptorIndex index_;
   DenseDisparityMatcher dense_;
   cv::Mat disparity_;

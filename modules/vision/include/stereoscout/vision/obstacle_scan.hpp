@@ -62,6 +62,18 @@
 // obstacle point within floor_tolerance_m of the camera's height no more than
 // same_surface_depth_m behind the obstacle: such an obstacle (a person, a wall) stays in view
 // at any range, so the grid may clear it when a later view looks through its cell.
+// The dense matcher sees nothing nearer than its largest disparity (0.63 m from the camera on
+// the default head), and the robot's disc reaches 0.45 m ahead of it: a surface that comes into
+// view nearer than that, beside the robot as it turns (a low box's corner), is in no column.
+// add_near_matches() takes such surfaces from the sparse stereo matches, which reach twice as
+// near: a match whose disparity exceeds the dense matcher's, above the floor and below the
+// robot, becomes its column's obstacle unless the column already holds a nearer one it
+// measured, if two things hold. The dense matcher found little around it: at most
+// near_max_dense_valid of the disparities within kNearWindowRadius pixels are valid (a surface
+// nearer than its reach has no match in its range, so it leaves holes; where it found a
+// surface, the sparse match is a repeated texture matched one period off, the simulated
+// clutter hall's every frame). And near_min_matches such matches (itself included) lie within
+// same_surface_depth_m of it on the floor.
 
 #include <cstdint>
 #include <vector>
@@ -104,6 +116,13 @@ struct ObstacleScanParams {
   // A floor point measured below the floor is moved up its ray onto the floor plane
   // (vision.scan_floor_onto_plane).
   bool floor_onto_plane = true;
+  // add_near_matches(): the matches that must agree on a near surface (0: off), and the most
+  // matches it looks at (the keypoints of an image).
+  int near_min_matches = 0;
+  int max_near_matches = 500;
+  // ... and a match counts only where at most this fraction of the dense disparities around it
+  // are valid (vision.scan_near_max_dense_valid).
+  double near_max_dense_valid = 0.4;
 };
 
 ObstacleScanParams scan_params_from_config(const core::VisionConfig& vision, const core::RobotConfig& robot);
@@ -125,12 +144,39 @@ class ObstacleScanner {
     compute(disparity, cv::Mat(), pan_rad, timestamp_ns, scan);
   }
 
+  // A sparse stereo match of the same pair: where it is in the left image, and its disparity.
+  struct NearMatch {
+    float x_left_px = 0.0F;
+    float y_px = 0.0F;
+    float disparity_px = 0.0F;
+  };
+  // After compute() on the same pair (same pan, same disparity map): the matches nearer than
+  // the dense matcher reaches become obstacles of their columns (see above); the others are
+  // ignored. Looks at the first max_near_matches. Nothing happens with near_min_matches 0. No
+  // allocation. Returns how many columns took an obstacle from them.
+  std::size_t add_near_matches(const NearMatch* matches, std::size_t count, const cv::Mat& disparity, double pan_rad,
+                               core::DepthScan& scan);
+  bool near_matches_used() const { return params_.near_min_matches > 0; }
+
  private:
   struct Candidate {
     double range_m = 0.0;
     double x_m = 0.0;
     double y_m = 0.0;
   };
+  struct NearPoint {
+    int column = 0;
+    double range_m = 0.0;
+    double x_m = 0.0;
+    double y_m = 0.0;
+    bool at_camera_height = false;
+  };
+  // The window add_near_matches looks at in the dense disparities: 11 x 11 pixels.
+  static constexpr int kNearWindowRadius = 5;
+  bool dense_matcher_found_little(const cv::Mat& disparity, const NearMatch& match) const;
+  std::size_t near_points_of(const NearMatch* matches, std::size_t count, const cv::Mat& disparity,
+                             const Eigen::Isometry3d& robot_from_camera);
+  bool near_point_supported(const NearPoint& point, std::size_t count) const;
   struct ColumnState {
     int obstacle_points = 0;  // entries used in this column's slice of nearest_
     bool has_floor = false;
@@ -160,6 +206,7 @@ class ObstacleScanner {
   std::vector<Candidate> nearest_;         // per column: its nearest obstacle points, sorted
   std::vector<float> floor_visible_from_m_;  // per column, from the calibration and mount
   std::vector<float> measurable_from_m_;     // per column, from the calibration and mount
+  std::vector<NearPoint> near_;              // add_near_matches' points, max_near_matches
   int horizon_row_;                          // image row of level rays (mount tilt; nose down is up)
 };
 

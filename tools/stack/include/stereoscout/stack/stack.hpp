@@ -103,6 +103,7 @@ struct StackCounters {
   std::uint64_t updates = 0;
   std::uint64_t updates_refused = 0;        // the filter refused (pool short): motion carried over
   std::uint64_t vision_failures = 0;
+  std::uint64_t near_obstacle_columns = 0;  // scan columns taken from the stereo matches
   std::uint64_t rollups = 0;
   std::uint64_t replans = 0;              // explorer steps of the replan task
   std::uint64_t drive_commands = 0;       // commands sent to the drive (both explorer tasks)
