@@ -20,8 +20,10 @@ class RenderedScanner {
   // `world` is held by reference and must outlive the scanner.
   RenderedScanner(const host_sim::World& world, const core::SystemConfig& config);
 
-  // Renders the view at `pose` (pan 0, time 0; `frame_index` seeds its noise) and scans it;
-  // false when the front end rejects the pair. The scan is valid until the next call.
+  // Renders the view at `pose` (pan 0; `frame_index` seeds its noise and stamps the pair) and
+  // scans it, with the SIFT stereo matches first when vision.scan_near_min_matches asks for
+  // them (near surfaces); false when the front end rejects the pair. The scan is valid until
+  // the next call.
   bool scan_at(const core::Pose2& pose, std::uint32_t frame_index);
   const core::DepthScan& scan() const { return scan_; }
 
@@ -30,6 +32,8 @@ class RenderedScanner {
   vision::VisionFrontEnd front_end_;
   core::StereoFrame frame_;
   core::DepthScan scan_;
+  bool near_matches_;
+  core::FixedVector<core::LandmarkObservation> observations_;
 };
 
 }  // namespace stereoscout::cli

@@ -114,7 +114,8 @@ void VisionFrontEnd::add_near_matches(const core::StereoFrame& frame, core::Dept
     if (near == nullptr) break;
     *near = {left.x_px, left.y_px, match.disparity_px};
   }
-  near_columns_ = scanner_.add_near_matches(near_matches_.data(), near_matches_.size(), disparity_, frame.pan_rad, scan);
+  near_columns_ = scanner_.add_near_matches(near_matches_.data(), near_matches_.size(), disparity_, frame.left,
+                                            frame.right, frame.pan_rad, scan);
 }
 
 }  // namespace stereoscout::vision

@@ -27,6 +27,7 @@ ObstacleScanParams scan_params_from_config(const core::VisionConfig& vision, con
   params.near_min_matches = vision.scan_near_min_matches;
   params.max_near_matches = vision.max_features;
   params.near_max_dense_valid = vision.scan_near_max_dense_valid;
+  params.near_uniqueness = vision.scan_near_uniqueness;
   return params;
 }
 
@@ -283,10 +284,43 @@ bool ObstacleScanner::dense_matcher_found_little(const cv::Mat& disparity, const
   return pixels > 0 && valid <= params_.near_max_dense_valid * pixels;
 }
 
+namespace {
+
+// Sum of absolute differences between the square patches of `radius` around (x, y) in `left`
+// and (x - d, y) in `right`; the caller keeps both inside their images.
+int patch_difference(const cv::Mat& left, const cv::Mat& right, int x, int y, int d, int radius) {
+  int sum = 0;
+  for (int row = y - radius; row <= y + radius; ++row) {
+    const std::uint8_t* l = left.ptr<std::uint8_t>(row) + x - radius;
+    const std::uint8_t* r = right.ptr<std::uint8_t>(row) + x - d - radius;
+    for (int i = 0; i <= 2 * radius; ++i) sum += std::abs(static_cast<int>(l[i]) - static_cast<int>(r[i]));
+  }
+  return sum;
+}
+
+}  // namespace
+
+bool ObstacleScanner::matches_only_that_near(const cv::Mat& left, const cv::Mat& right, const NearMatch& match) const {
+  const int radius = kNearWindowRadius;
+  const auto x = static_cast<int>(std::lround(match.x_left_px));
+  const auto y = static_cast<int>(std::lround(match.y_px));
+  const auto d = static_cast<int>(std::lround(match.disparity_px));
+  if (y - radius < 0 || y + radius >= left.rows || x + radius >= left.cols || x - d - 1 - radius < 0) return false;
+  int near = patch_difference(left, right, x, y, d, radius);
+  near = std::min(near, patch_difference(left, right, x, y, d - 1, radius));
+  near = std::min(near, patch_difference(left, right, x, y, d + 1, radius));
+  const int widest = std::min(params_.max_disparity_px, x - radius);
+  for (int in_range = 0; in_range <= widest; ++in_range) {
+    if (near >= params_.near_uniqueness * patch_difference(left, right, x, y, in_range, radius)) return false;
+  }
+  return true;
+}
+
 // The matches nearer than the dense matcher reaches, above the floor and below the robot,
-// where it found little, as points on the floor plane filed under their right-image columns;
+// where it found little and that match only that near, as points on the floor plane filed under their right-image columns;
 // returns how many.
 std::size_t ObstacleScanner::near_points_of(const NearMatch* matches, std::size_t count, const cv::Mat& disparity,
+                                            const cv::Mat& left, const cv::Mat& right,
                                             const Eigen::Isometry3d& robot_from_camera) {
   const Eigen::Vector3d origin = robot_from_camera.translation();
   std::size_t kept = 0;
@@ -295,7 +329,10 @@ std::size_t ObstacleScanner::near_points_of(const NearMatch* matches, std::size_
     if (!(match.disparity_px > static_cast<float>(params_.max_disparity_px))) continue;
     const double x_right = static_cast<double>(match.x_left_px) - match.disparity_px;
     const auto column = static_cast<int>(std::lround(x_right));
-    if (column < 0 || column >= calibration_.width_px || !dense_matcher_found_little(disparity, match)) continue;
+    if (column < 0 || column >= calibration_.width_px || !dense_matcher_found_little(disparity, match) ||
+        !matches_only_that_near(left, right, match)) {
+      continue;
+    }
     const Eigen::Vector3d point =
         robot_from_camera * triangulate_point(calibration_, x_right, match.y_px, match.disparity_px);
     if (!(point.z() > params_.floor_tolerance_m && point.z() < params_.robot_height_m)) continue;
@@ -320,15 +357,18 @@ bool ObstacleScanner::near_point_supported(const NearPoint& point, std::size_t c
 }
 
 std::size_t ObstacleScanner::add_near_matches(const NearMatch* matches, std::size_t count, const cv::Mat& disparity,
-                                              double pan_rad, core::DepthScan& scan) {
+                                              const cv::Mat& left, const cv::Mat& right, double pan_rad,
+                                              core::DepthScan& scan) {
   if (params_.near_min_matches <= 0) return 0;
+  const auto camera_sized = [this](const cv::Mat& image, int type) {
+    return image.type() == type && image.cols == calibration_.width_px && image.rows == calibration_.height_px;
+  };
   STEREOSCOUT_CHECK(scan.columns.size() == static_cast<std::size_t>(calibration_.width_px) &&
-                        disparity.type() == CV_32FC1 && disparity.cols == calibration_.width_px &&
-                        disparity.rows == calibration_.height_px,
-                    "ObstacleScanner::add_near_matches: disparity or scan not sized for this camera");
+                        camera_sized(disparity, CV_32FC1) && camera_sized(left, CV_8UC1) && camera_sized(right, CV_8UC1),
+                    "ObstacleScanner::add_near_matches: images, disparity or scan not sized for this camera");
   const Eigen::Isometry3d robot_from_camera = core::robot_from_camera(mount_, pan_rad);
   const Eigen::Vector2d origin = robot_from_camera.translation().head<2>();
-  const std::size_t near_count = near_points_of(matches, count, disparity, robot_from_camera);
+  const std::size_t near_count = near_points_of(matches, count, disparity, left, right, robot_from_camera);
   std::size_t columns = 0;
   for (std::size_t i = 0; i < near_count; ++i) {
     const NearPoint& point = near_[i];

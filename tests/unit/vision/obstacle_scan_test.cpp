@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <vector>
 
+#include <opencv2/core.hpp>
+
 #include "stereoscout/core/allocation_counter.hpp"
 #include "stereoscout/vision/dense_disparity.hpp"
 #include "stereoscout/vision/obstacle_scan.hpp"
@@ -421,33 +423,56 @@ TEST(ObstacleScan, IsolatedMismatchesDoNotMakeObstacles) {
   EXPECT_EQ(scan.columns[100].kind, Kind::obstacle);
 }
 
+// A pair whose right image shows the left image's pixels [x0, x1) x [y0, y1) at disparity d.
+void show_at_disparity(const cv::Mat& left, cv::Mat& right, int x0, int x1, int y0, int y1, int d) {
+  for (int y = y0; y < y1; ++y) {
+    for (int x = x0; x < x1; ++x) right.at<std::uint8_t>(y, x - d) = left.at<std::uint8_t>(y, x);
+  }
+}
+
 // Matches on a surface 0.45 m ahead (disparity 40 / 0.45 = 88.9 px, beyond the dense
 // matcher's 63) over open floor, in holes of the dense disparities as a surface that near
-// leaves: three that agree become their columns' obstacles. A match alone, three where the
-// dense matcher found the floor (a repeated texture matched a period off), and a match the
-// dense matcher reaches leave their columns as they were; so does a scanner with
-// near_min_matches 0.
-TEST(ObstacleScan, NearMatchesThatAgreeWhereTheDenseMatcherFoundLittleBecomeObstacles) {
+// leaves. Three that agree, on a patch the right image shows at 89 px only, become their
+// columns' obstacles. Left as they were: a match alone; three where the dense matcher found
+// the floor; three on a texture repeating every 20 px, which also matches at 9, 29 and 49 px
+// (the dense matcher leaves holes there for the ambiguity); and a match the dense matcher
+// reaches. A scanner with near_min_matches 0 changes nothing.
+TEST(ObstacleScan, NearMatchesThatAgreeAndMatchOnlyThatNearWhereTheDenseMatcherFoundLittleBecomeObstacles) {
   ObstacleScanParams params;
   params.near_min_matches = 3;
   const StereoCalibration camera;
   ObstacleScanner scanner(params, camera, paper_mount());
   const test::Rendering view = test::render(test::Scene{}, camera, paper_mount(), core::Pose2{});
   cv::Mat disparity = disparity_from_depth(view.left_depth, camera);
-  disparity(cv::Rect(320, 225, 30, 30)).setTo(kInvalidDisparity);
-  disparity(cv::Rect(550, 225, 20, 30)).setTo(kInvalidDisparity);
+  cv::Mat left(camera.height_px, camera.width_px, CV_8UC1);
+  cv::Mat right(camera.height_px, camera.width_px, CV_8UC1);
+  cv::RNG(1).fill(left, cv::RNG::UNIFORM, 0, 256);
+  cv::RNG(2).fill(right, cv::RNG::UNIFORM, 0, 256);
+  const int near_d = 89;
+  show_at_disparity(left, right, 290, 370, 225, 255, near_d);  // the near surface
+  show_at_disparity(left, right, 612, 628, 225, 255, near_d);  // the match alone
+  for (int y = 225; y < 255; ++y) {  // the repeated texture: period 20 px, seen at 9 (mod 20)
+    const auto texture = [&left, y](int x) { return left.at<std::uint8_t>(y, 400 + x % 20); };
+    for (int x = 500 - 1; x >= 400; --x) left.at<std::uint8_t>(y, x) = texture(x - 400);
+    for (int u = 350; u < 500; ++u) right.at<std::uint8_t>(y, u) = texture(u + 9 - 400 + 20 * 10);
+  }
+  for (const cv::Rect hole : {cv::Rect(320, 225, 30, 30), cv::Rect(610, 225, 20, 30), cv::Rect(440, 225, 30, 30)}) {
+    disparity(hole).setTo(kInvalidDisparity);
+  }
   core::DepthScan dense_only;
   scanner.allocate(dense_only);
   scanner.compute(disparity, 0.0, 5, dense_only);
   core::DepthScan scan = dense_only;
-  const float d = 40.0F / 0.45F;
+  const auto d = static_cast<float>(near_d);
   const ObstacleScanner::NearMatch matches[] = {
-      {330.0F, 239.5F, d}, {334.0F, 239.5F, d}, {338.0F, 239.5F, d},  // three that agree, in the hole
-      {560.0F, 239.5F, d},                                            // alone, 0.26 m from them
+      {330.0F, 240.0F, d}, {334.0F, 240.0F, d}, {338.0F, 240.0F, d},  // three that agree, only that near
+      {620.0F, 240.0F, d},                                            // alone, 0.33 m from them
       {430.0F, 330.0F, d}, {434.0F, 330.0F, d}, {438.0F, 330.0F, d},  // where the floor was matched
+      {450.0F, 240.0F, d}, {454.0F, 240.0F, d}, {458.0F, 240.0F, d},  // the repeated texture
       {200.0F, 300.0F, 20.0F},                                        // 2 m away: the dense matcher's
   };
-  scanner.add_near_matches(matches, 8, disparity, 0.0, scan);
+  const std::size_t count = sizeof(matches) / sizeof(matches[0]);
+  EXPECT_EQ(scanner.add_near_matches(matches, count, disparity, left, right, 0.0, scan), 3U);
   std::vector<std::size_t> near_columns;
   for (const float x_left : {330.0F, 334.0F, 338.0F}) {
     const auto column = static_cast<std::size_t>(std::lround(x_left - d));
@@ -455,7 +480,7 @@ TEST(ObstacleScan, NearMatchesThatAgreeWhereTheDenseMatcherFoundLittleBecomeObst
     const core::DepthScanColumn& near = scan.columns[column];
     ASSERT_EQ(dense_only.columns[column].kind, Kind::free);
     ASSERT_EQ(near.kind, Kind::obstacle) << column;
-    EXPECT_NEAR(near.x_robot_m, 0.55, 1e-3);
+    EXPECT_NEAR(near.x_robot_m, 0.1 + 40.0 / near_d, 1e-3);
     EXPECT_TRUE(near.obstacle_at_camera_height);
     EXPECT_NEAR(near.measurable_from_m, range_of(scan, near), 1e-5);
     EXPECT_EQ(near.floor_visible_from_m, dense_only.columns[column].floor_visible_from_m);
@@ -467,7 +492,7 @@ TEST(ObstacleScan, NearMatchesThatAgreeWhereTheDenseMatcherFoundLittleBecomeObst
   }
   ObstacleScanner off(ObstacleScanParams{}, camera, paper_mount());
   core::DepthScan untouched = dense_only;
-  off.add_near_matches(matches, 8, disparity, 0.0, untouched);
+  EXPECT_EQ(off.add_near_matches(matches, count, disparity, left, right, 0.0, untouched), 0U);
   for (std::size_t column = 0; column < scan.columns.size(); ++column) {
     EXPECT_EQ(untouched.columns[column].kind, dense_only.columns[column].kind) << column;
   }

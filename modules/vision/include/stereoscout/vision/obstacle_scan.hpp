@@ -68,11 +68,15 @@
 // add_near_matches() takes such surfaces from the sparse stereo matches, which reach twice as
 // near: a match whose disparity exceeds the dense matcher's, above the floor and below the
 // robot, becomes its column's obstacle unless the column already holds a nearer one it
-// measured, if two things hold. The dense matcher found little around it: at most
+// measured, if three things hold. The dense matcher found little around it: at most
 // near_max_dense_valid of the disparities within kNearWindowRadius pixels are valid (a surface
 // nearer than its reach has no match in its range, so it leaves holes; where it found a
 // surface, the sparse match is a repeated texture matched one period off, the simulated
-// clutter hall's every frame). And near_min_matches such matches (itself included) lie within
+// clutter hall's every frame). Its patch matches only that near: the sum of absolute
+// differences of the (2 kNearWindowRadius + 1)^2 patch at its disparity (give or take a pixel)
+// is below near_uniqueness times the smallest at any disparity the dense matcher covers (a
+// repeated texture the dense matcher left holes in, for its ambiguity, matches a period
+// nearer as well). And near_min_matches such matches (itself included) lie within
 // same_surface_depth_m of it on the floor.
 
 #include <cstdint>
@@ -121,8 +125,11 @@ struct ObstacleScanParams {
   int near_min_matches = 0;
   int max_near_matches = 500;
   // ... and a match counts only where at most this fraction of the dense disparities around it
-  // are valid (vision.scan_near_max_dense_valid).
+  // are valid (vision.scan_near_max_dense_valid),
   double near_max_dense_valid = 0.4;
+  // ... and where its patch's difference at its disparity is below this fraction of the
+  // smallest at any disparity the dense matcher covers (vision.scan_near_uniqueness).
+  double near_uniqueness = 0.7;
 };
 
 ObstacleScanParams scan_params_from_config(const core::VisionConfig& vision, const core::RobotConfig& robot);
@@ -153,9 +160,10 @@ class ObstacleScanner {
   // After compute() on the same pair (same pan, same disparity map): the matches nearer than
   // the dense matcher reaches become obstacles of their columns (see above); the others are
   // ignored. Looks at the first max_near_matches. Nothing happens with near_min_matches 0. No
-  // allocation. Returns how many columns took an obstacle from them.
-  std::size_t add_near_matches(const NearMatch* matches, std::size_t count, const cv::Mat& disparity, double pan_rad,
-                               core::DepthScan& scan);
+  // allocation. Returns how many columns took an obstacle from them. left and right: the
+  // pair's rectified 8-bit grey images.
+  std::size_t add_near_matches(const NearMatch* matches, std::size_t count, const cv::Mat& disparity,
+                               const cv::Mat& left, const cv::Mat& right, double pan_rad, core::DepthScan& scan);
   bool near_matches_used() const { return params_.near_min_matches > 0; }
 
  private:
@@ -174,8 +182,9 @@ class ObstacleScanner {
   // The window add_near_matches looks at in the dense disparities: 11 x 11 pixels.
   static constexpr int kNearWindowRadius = 5;
   bool dense_matcher_found_little(const cv::Mat& disparity, const NearMatch& match) const;
+  bool matches_only_that_near(const cv::Mat& left, const cv::Mat& right, const NearMatch& match) const;
   std::size_t near_points_of(const NearMatch* matches, std::size_t count, const cv::Mat& disparity,
-                             const Eigen::Isometry3d& robot_from_camera);
+                             const cv::Mat& left, const cv::Mat& right, const Eigen::Isometry3d& robot_from_camera);
   bool near_point_supported(const NearPoint& point, std::size_t count) const;
   struct ColumnState {
     int obstacle_points = 0;  // entries used in this column's slice of nearest_

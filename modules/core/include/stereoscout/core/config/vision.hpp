@@ -55,6 +55,7 @@ struct VisionConfig {
   bool scan_floor_onto_plane = true;
   int scan_near_min_matches = 0;
   double scan_near_max_dense_valid = 0.4;
+  double scan_near_uniqueness = 0.7;
 };
 
 inline void describe(ConfigVisitor& v, VisionConfig& c) {
@@ -103,6 +104,7 @@ inline void describe(ConfigVisitor& v, VisionConfig& c) {
   v.boolean("scan_floor_onto_plane", c.scan_floor_onto_plane, "A floor point that its disparity puts below the floor is moved up its pixel's ray to where that ray meets the floor plane: its disparity error alone put it farther (for the paper's 0.5 px, up to 8% of its range before the floor tolerance rejects it), and the farthest floor point of a column, its free end, is the one whose error put it farthest, beyond the wall behind it. The eval-scan sweep of the office: free rays through an obstacle 5736 -> 3644 (docs/results.md). Assumes a flat floor and a level camera, as the rest of the scan does.");
   v.integer_field("scan_near_min_matches", c.scan_near_min_matches, {0, 1000, "matches", "Surfaces nearer than the dense matcher reaches (focal * baseline / (dense_num_disparities - 1), 0.63 m from the camera on the default head) are taken from the SIFT stereo matches, which reach max_disparity_px (0.31 m): a match with a larger disparity than the dense matcher's, above the floor and below the robot, is an obstacle in its scan column when at least this many such matches (itself included) lie within scan_same_surface_depth_m of it on the floor. Without it the scan holds nothing that near: a low box's corner that came into view 0.4 m from the camera as the robot turned beside it was driven into (docs/results.md, clutter seed 3). 0 = off. Not in the paper."});
   v.number("scan_near_max_dense_valid", c.scan_near_max_dense_valid, {0.0, 1.0, "", "scan_near_min_matches counts a match only where at most this fraction of the dense disparities in the 11 x 11 pixels around it are valid: a surface nearer than the dense matcher reaches leaves it nothing to match there (at clutter seed 3's box corner 0-31% of the window was valid), while most sparse matches with a disparity that large are a repeated texture matched a period off, over a surface the dense matcher did find (mostly 100% valid; about ten such matches a frame in the simulated clutter hall)."});
+  v.number("scan_near_uniqueness", c.scan_near_uniqueness, {0.0, 1.0, "", "scan_near_min_matches counts a match only where the sum of absolute differences of the 11 x 11 patch around it, between the left image and the right at its disparity (give or take a pixel), is below this fraction of the smallest at every disparity the dense matcher covers: a near surface has nothing like it in that range, a repeated texture (which the dense matcher also leaves holes in, for its ambiguity) matches a period nearer too."});
   v.require(c.dense_window_px % 2 == 1, "dense_window_px", "must be odd");
   v.require(c.min_disparity_px < c.max_disparity_px, "max_disparity_px", "must be larger than min_disparity_px");
   v.end_section();
