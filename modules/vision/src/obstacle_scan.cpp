@@ -317,8 +317,8 @@ bool ObstacleScanner::matches_only_that_near(const cv::Mat& left, const cv::Mat&
 }
 
 // The matches nearer than the dense matcher reaches, above the floor and below the robot,
-// where it found little and that match only that near, as points on the floor plane filed under their right-image columns;
-// returns how many.
+// where it found little and that match only that near, as points on the floor plane filed
+// under their right-image columns; returns how many.
 std::size_t ObstacleScanner::near_points_of(const NearMatch* matches, std::size_t count, const cv::Mat& disparity,
                                             const cv::Mat& left, const cv::Mat& right,
                                             const Eigen::Isometry3d& robot_from_camera) {
