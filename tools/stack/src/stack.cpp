@@ -417,7 +417,8 @@ core::Status Stack::observation_update() {
 }
 
 // The kept pair's dense disparity and scan, on the scan worker while the filter update runs
-// (it touches neither scan_ nor the front end's dense matcher), or here.
+// (it touches neither scan_ nor the front end's dense matcher, and the stereo matches the scan
+// reads stay as observe_landmarks left them until the next pair), or here.
 void Stack::start_scan() {
   scan_pending_ = true;
   if (scan_worker_) {
@@ -437,8 +438,11 @@ void Stack::finish_scan() {
   if (!scan_pending_) return;
   if (scan_worker_) scan_worker_->wait();
   scan_pending_ = false;
-  if (!scan_status_.ok()) ++counters_.vision_failures;
-  if (scan_status_.ok()) counters_.near_obstacle_columns += vision_->last_near_columns();
+  if (scan_status_.ok()) {
+    counters_.near_obstacle_columns += vision_->last_near_columns();
+  } else {
+    ++counters_.vision_failures;
+  }
 }
 
 // The scan's obstacles at the camera's height, placed with the pose the grid uses for this
