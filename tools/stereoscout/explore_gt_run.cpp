@@ -86,7 +86,9 @@ ExploreGtResult run_explore_gt(const core::SystemConfig& config, const host_sim:
   const occupancy::CellThresholds thresholds = occupancy::CellThresholds::from_config(config.grid);
   std::vector<occupancy::CellState> cells(geometry.cell_count(), occupancy::CellState::unknown);
   std::vector<std::uint8_t> in_view(cells.size(), 0);
-  const explore::GridView view = stack::navigation_view(geometry, cells.data(), in_view.data());
+  std::vector<std::uint8_t> looked_over(config.grid.looked_over_range_m > 0.0 ? cells.size() : 0, 0);
+  std::uint8_t* const looked_over_marks = looked_over.empty() ? nullptr : looked_over.data();
+  const explore::GridView view = stack::navigation_view(geometry, cells.data(), in_view.data(), looked_over_marks);
 
   core::ExploreConfig explore_config = config.explore;
   explore_config.time_limit_s = std::min(explore_config.time_limit_s, config.run.max_time_s);
@@ -120,7 +122,7 @@ ExploreGtResult run_explore_gt(const core::SystemConfig& config, const host_sim:
       seen.odometry = pose;  // ground truth here stands for odometry too
       seen.pose = pose;
       seen.pan_rad = simulator.pan_rad();
-      occupancy::classify_cells(grid, thresholds, cells.data(), in_view.data());
+      occupancy::classify_cells(grid, thresholds, cells.data(), in_view.data(), looked_over_marks);
       last_update_pose = pose;
       last_update_camera_heading = camera_heading;
       first = false;

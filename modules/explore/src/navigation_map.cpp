@@ -355,6 +355,8 @@ void NavigationMap::distance_transform(std::int32_t* sites, IsSite&& is_site) {
 // disc whose floor the camera cannot see) and, with unknown_travel_near_robot, near the robot
 // (a look from a goal leaves the ring within a metre unseen). Never a cell that was in view:
 // that is a surface the stereo could not measure, such as a blank wall.
+// With the grid's looked-over marks, only where a ray passed over the cell: one beside the
+// robot's way that no view ever swept may hold a low box's side.
 bool NavigationMap::unknown_passable(int x, int y) const {
   const Eigen::Vector2d centre = grid_.center(x, y);
   const double from_robot2 = (centre - robot_).squaredNorm();
@@ -362,18 +364,29 @@ bool NavigationMap::unknown_passable(int x, int y) const {
   if (grid_.was_in_view(x, y)) return false;
   const double travel2 = params_.explore.unknown_travel_radius_m * params_.explore.unknown_travel_radius_m;
   return (centre - extra_unknown_centre_).squaredNorm() <= travel2 ||
-         (params_.explore.unknown_travel_near_robot && from_robot2 <= travel2);
+         (params_.explore.unknown_travel_near_robot && from_robot2 <= travel2 &&
+          (!grid_.marks_looked_over() || grid_.was_looked_over(x, y)));
+}
+
+// Near the robot, an unknown cell no ray passed over (grid.looked_over_range_m).
+bool NavigationMap::unswept_near_robot(int x, int y) const {
+  if (!grid_.marks_looked_over() || !params_.explore.unknown_travel_near_robot || grid_.was_looked_over(x, y)) {
+    return false;
+  }
+  const double travel = params_.explore.unknown_travel_radius_m;
+  return (grid_.center(x, y) - robot_).squaredNorm() <= travel * travel && !unknown_passable(x, y);
 }
 
 // What the robot must keep its radius (and the margin) away from: occupied cells, except deep
 // under it; the unknown cells in a seen obstacle's shadow; and with unknown_clearance the
 // unknown cells it may not cross (a blank wall the camera never saw: without this, paths ran
-// along the seen floor with the disc in the wall).
+// along the seen floor with the disc in the wall); and near the robot, with the grid's
+// looked-over marks, the unknown cells no view swept.
 bool NavigationMap::obstacle_site(int x, int y) const {
   const CellState state = grid_.at(x, y);
   if (state == CellState::occupied) return !under_robot(x, y);
   if (state != CellState::unknown) return false;
-  return in_shadow(x, y) || (params_.explore.unknown_clearance && !unknown_passable(x, y));
+  return in_shadow(x, y) || (params_.explore.unknown_clearance && !unknown_passable(x, y)) || unswept_near_robot(x, y);
 }
 
 bool NavigationMap::nearest_obstacles_aside(const Eigen::Vector2d& centre, const Eigen::Vector2d& across, double reach_m,

@@ -40,8 +40,8 @@ bool GridGeometry::same_as(const GridGeometry& other) const {
 LogOddsModel LogOddsModel::from_config(const core::GridConfig& config) {
   return {static_cast<float>(config.log_odds_hit), static_cast<float>(config.log_odds_miss),
           static_cast<float>(config.log_odds_min), static_cast<float>(config.log_odds_max),
-          static_cast<float>(config.in_view_range_m), static_cast<float>(config.free_end_sigmas),
-          config.once_per_scan};
+          static_cast<float>(config.in_view_range_m), static_cast<float>(config.looked_over_range_m),
+          static_cast<float>(config.free_end_sigmas), config.once_per_scan};
 }
 
 CellThresholds CellThresholds::from_config(const core::GridConfig& config) {
@@ -65,17 +65,20 @@ CellState CellThresholds::classify(float log_odds) const {
 }
 
 void classify_cells(const OccupancyGrid& grid, const CellThresholds& thresholds, CellState* cells,
-                    std::uint8_t* in_view) {
+                    std::uint8_t* in_view, std::uint8_t* looked_over) {
   const float occupied_above = logit(thresholds.occupied);
   const float free_below = logit(thresholds.free);
   const float* log_odds = grid.data();
   const std::size_t count = grid.geometry().cell_count();
   for (std::size_t i = 0; i < count; ++i) cells[i] = classify_log_odds(log_odds[i], occupied_above, free_below);
-  if (in_view == nullptr) return;
+  if (in_view == nullptr && looked_over == nullptr) return;
   const GridGeometry& geometry = grid.geometry();
   for (int y = 0; y < geometry.height_cells; ++y) {
-    std::uint8_t* row = in_view + static_cast<std::size_t>(y) * static_cast<std::size_t>(geometry.width_cells);
-    for (int x = 0; x < geometry.width_cells; ++x) row[x] = grid.in_view(x, y) ? 1U : 0U;
+    const std::size_t row = static_cast<std::size_t>(y) * static_cast<std::size_t>(geometry.width_cells);
+    for (int x = 0; x < geometry.width_cells; ++x) {
+      if (in_view != nullptr) in_view[row + static_cast<std::size_t>(x)] = grid.in_view(x, y) ? 1U : 0U;
+      if (looked_over != nullptr) looked_over[row + static_cast<std::size_t>(x)] = grid.looked_over(x, y) ? 1U : 0U;
+    }
   }
 }
 
@@ -166,7 +169,7 @@ void OccupancyGrid::hit(int cell_x, int cell_y, bool at_camera_height) {
   if (!geometry_.contains(cell_x, cell_y)) return;
   add(cell_x, cell_y, model_.hit);
   std::uint8_t& flags = cell_flags_[index(cell_x, cell_y)];
-  flags = static_cast<std::uint8_t>((flags & (kHitThisScan | kInView)) | (at_camera_height ? kLastHitAtCameraHeight : 0U));
+  flags = static_cast<std::uint8_t>((flags & (kHitThisScan | kInView | kLookedOver)) | (at_camera_height ? kLastHitAtCameraHeight : 0U));
 }
 
 // A ray's two ends in cell units (x_m - origin) / resolution; false when an end is not finite
@@ -343,7 +346,9 @@ void OccupancyGrid::insert_column(const Eigen::Vector2d& origin, const Eigen::Ve
     clear_camera_height_hits(start.x(), start.y(), stop.x(), stop.y());
   }
   const double in_view_end = std::min<double>(model_.in_view_range_m, obstacle ? length : model_.in_view_range_m);
-  if (in_view_end > visible_from) mark_in_view(at(visible_from), at(in_view_end));
+  if (in_view_end > visible_from) mark_cells(at(visible_from), at(in_view_end), kInView);
+  const double looked_over_end = std::min<double>(model_.looked_over_range_m, length);
+  if (looked_over_end > 0.0) mark_cells(origin, at(looked_over_end), kLookedOver);
   if (obstacle && length <= visible_from) {
     cast_ray(end.x(), end.y(), end.x(), end.y(), true, point.obstacle_at_camera_height, kAlwaysFirm);  // its own cell only
     return;
@@ -357,12 +362,12 @@ void OccupancyGrid::insert_column(const Eigen::Vector2d& origin, const Eigen::Ve
   cast_ray(start.x(), start.y(), stop.x(), stop.y(), obstacle, point.obstacle_at_camera_height, firm);
 }
 
-void OccupancyGrid::mark_in_view(const Eigen::Vector2d& from, const Eigen::Vector2d& to) {
+void OccupancyGrid::mark_cells(const Eigen::Vector2d& from, const Eigen::Vector2d& to, std::uint8_t flag) {
   GridSegment segment;
   // Not counted: a rejected end is the column's, counted by its ray.
   if (!grid_coordinates(from.x(), from.y(), to.x(), to.y(), segment) || misses_grid(segment)) return;
-  const auto mark = [this](int x, int y) {
-    if (geometry_.contains(x, y)) cell_flags_[index(x, y)] |= kInView;
+  const auto mark = [this, flag](int x, int y) {
+    if (geometry_.contains(x, y)) cell_flags_[index(x, y)] |= flag;
   };
   walk_cells(segment, mark);
   mark(static_cast<int>(std::floor(segment.x1)), static_cast<int>(std::floor(segment.y1)));

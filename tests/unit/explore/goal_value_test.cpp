@@ -335,6 +335,41 @@ TEST(NavigationMap, UnknownCellsPathsMayNotCrossAreKeptClearOf) {
   EXPECT_EQ(plain.traversability(60, 9), Traversability::lethal);
 }
 
+// The clutter hall's brick box (seed 3, 304 s): the robot drove along its low south face with
+// the face out of the camera's view, then turned towards the gap beside it. With the grid's
+// looked-over marks, the unknown cells near the robot that no ray passed over are barred and
+// kept clear of; the unknown cells the camera looked over (its blind ring) stay passable.
+TEST(NavigationMap, UnknownCellsNearTheRobotNoViewSweptAreKeptClearOf) {
+  TestGrid grid(60, 60, CellState::free);
+  grid.fill(33, 33, 39, 39, CellState::unknown);  // never looked over: the box's unseen side
+  grid.fill(22, 30, 27, 31, CellState::unknown);  // looked over, not measured: the blind ring
+  grid.fill(48, 48, 52, 52, CellState::unknown);  // never looked over, far from the robot
+  std::vector<std::uint8_t> looked_over(grid.cells.size(), 1);
+  for (int y = 33; y < 39; ++y) {
+    for (int x = 33; x < 39; ++x) looked_over[grid.view().index(x, y)] = 0;
+  }
+  for (int y = 48; y < 52; ++y) {
+    for (int x = 48; x < 52; ++x) looked_over[grid.view().index(x, y)] = 0;
+  }
+  GridView marked = grid.view();
+  marked.looked_over = looked_over.data();
+  const ExploreParams params = test_params(60, 60);
+  const Eigen::Vector2d robot(3.05, 3.05);  // cell (30, 30)
+  const Eigen::Vector2d start(0.55, 0.55);
+  NavigationMap map(params);
+  ASSERT_TRUE(map.rebuild(marked, robot, start));
+  EXPECT_FALSE(map.passable(34, 34));                             // 0.57 m from the robot
+  EXPECT_EQ(map.traversability(36, 31), Traversability::lethal);  // 0.2 m from the unswept cells
+  EXPECT_NEAR(map.occupied_distance_m(36, 28), 0.5, 1e-12);
+  EXPECT_TRUE(map.passable(24, 30));                              // 0.6 m away, looked over
+  EXPECT_GT(map.occupied_distance_m(50, 46), 1.0);                // far: barred, not kept clear of
+  // Without the marks every unknown cell near the robot is passable, and none is kept clear of.
+  NavigationMap plain(params);
+  ASSERT_TRUE(plain.rebuild(grid.view(), robot, start));
+  EXPECT_TRUE(plain.passable(34, 34));
+  EXPECT_NE(plain.traversability(36, 31), Traversability::lethal);
+}
+
 // A walled room, all seen, with a 0.8 m box whose inside is unknown and whose ring has a
 // two-cell gap the camera never saw (unknown too), and a 3.2 x 3.2 m unknown block walled off.
 struct PocketScene {

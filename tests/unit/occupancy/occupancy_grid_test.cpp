@@ -210,6 +210,37 @@ TEST(OccupancyGrid, ColumnsMarkWhatTheyHadInView) {
   EXPECT_EQ(cells[10 * 20 + 15], CellState::unknown);
 }
 
+// What a column's ray passed over: from the camera, the blind zone included, up to
+// looked_over_range_m or to its end. No log-odds change; nothing marked with the range at 0.
+TEST(OccupancyGrid, ColumnsMarkTheCellsTheirRaysPassedOverBlindZoneIncluded) {
+  LogOddsModel model;
+  model.looked_over_range_m = 0.3F;
+  OccupancyGrid grid(small_geometry(), model);
+  // Origin (0.05, 0.05) is cell (10, 10); the floor visible from 0.2 m, an obstacle 0.4 m ahead (cell 14).
+  grid.insert(one_column_visible_from(0.4F, Kind::obstacle, 0.2F), core::Pose2{0.05, 0.05, 0.0});
+  for (int x = 10; x <= 13; ++x) EXPECT_TRUE(grid.looked_over(x, 10)) << x;  // to 0.35 m
+  EXPECT_FALSE(grid.looked_over(14, 10));
+  EXPECT_FALSE(grid.looked_over(12, 11));
+  EXPECT_FALSE(grid.in_view(12, 10));
+  EXPECT_FLOAT_EQ(grid.log_odds(11, 10), 0.0F);  // the blind zone: looked over, not measured
+  EXPECT_FLOAT_EQ(grid.log_odds(14, 10), 0.85F);  // a hit keeps the mark it had
+  // The range beyond the column's end: up to its end only.
+  model.looked_over_range_m = 2.0F;
+  OccupancyGrid far(small_geometry(), model);
+  far.insert(one_column_visible_from(0.4F, Kind::obstacle, 0.2F), core::Pose2{0.05, 0.05, 0.0});
+  EXPECT_TRUE(far.looked_over(14, 10));
+  EXPECT_FALSE(far.looked_over(15, 10));
+  std::vector<CellState> cells(small_geometry().cell_count());
+  std::vector<std::uint8_t> looked_over(small_geometry().cell_count(), 7);
+  classify_cells(far, CellThresholds{}, cells.data(), nullptr, looked_over.data());
+  EXPECT_EQ(looked_over[10 * 20 + 14], 1U);
+  EXPECT_EQ(looked_over[10 * 20 + 15], 0U);
+  // Off: nothing marked.
+  OccupancyGrid off(small_geometry(), LogOddsModel{});
+  off.insert(one_column_visible_from(0.4F, Kind::obstacle, 0.2F), core::Pose2{0.05, 0.05, 0.0});
+  for (int x = 0; x < 20; ++x) EXPECT_FALSE(off.looked_over(x, 10)) << x;
+}
+
 // A 0.1 m box 3 m ahead, approached in 7 cm steps (the update trigger) to 0.55 m, where the
 // robot stays for 15 more scans (a look around). The camera (floor visible from 1 m) sees the
 // box's top until it is 1 m x (1 - 0.1 / 0.6) = 0.83 m away; nearer, the box is below the

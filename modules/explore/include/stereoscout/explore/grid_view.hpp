@@ -29,6 +29,10 @@ struct GridView {
   // Optional, same layout: nonzero where the cell was in view of the camera (the occupancy
   // grid's in_view). Unknown and in view: a surface stereo could not measure, never crossed.
   const std::uint8_t* in_view = nullptr;
+  // Optional, same layout: nonzero where a scan column's ray passed over the cell (the
+  // occupancy grid's looked_over, grid.looked_over_range_m). Given, an unknown cell near the
+  // robot is passable only if looked over, and kept clear of if not (NavigationMap).
+  const std::uint8_t* looked_over = nullptr;
   // Optional, same layout: nonzero where the explorer saw the cell standing (occupied through
   // explore.trace_view_updates updates in the camera's view; TraceMemory). Where the grid now
   // holds such a cell free, paths pay explore.remembered_obstacle_cost to cross it.
@@ -40,6 +44,8 @@ struct GridView {
   }
   CellState at(int x, int y) const { return static_cast<CellState>(cells[index(x, y)]); }
   bool was_in_view(int x, int y) const { return in_view != nullptr && in_view[index(x, y)] != 0; }
+  bool marks_looked_over() const { return looked_over != nullptr; }
+  bool was_looked_over(int x, int y) const { return looked_over != nullptr && looked_over[index(x, y)] != 0; }
   bool was_seen_standing(int x, int y) const { return seen_standing != nullptr && seen_standing[index(x, y)] != 0; }
   Eigen::Vector2d center(int x, int y) const { return origin_m + resolution_m * Eigen::Vector2d(x + 0.5, y + 0.5); }
   Eigen::Vector2i cell_of(const Eigen::Vector2d& point) const {

@@ -10,6 +10,10 @@
 // cell lethal, the cells under the disc that are lethal only for their clearance are passable
 // at the highest cost, so that a plan can lead away from it (open_way_out()).
 //
+// With the grid's looked-over marks (grid.looked_over_range_m), the unknown cells near the
+// robot that no scan's ray passed over are kept clear of like occupied cells: they lay beside
+// the robot's way, out of the camera's view, where a low box's side may stand.
+//
 // Unobservable pockets: an unknown region (4-connected, so that a diagonal wall line closes
 // it) that does not reach the window's edge and covers at most explore.max_pocket_area_m2 is
 // enclosed by what the robot has seen: the inside of a low box or a cupboard, the floor under
@@ -115,6 +119,7 @@ class NavigationMap {
   template <std::size_t kSteps, typename Enter, typename Visit>
   std::size_t breadth_first(std::size_t seed, const int (&steps)[kSteps][2], Enter&& enter, Visit&& visit);
   bool unknown_passable(int x, int y) const;
+  bool unswept_near_robot(int x, int y) const;  // of an unknown cell
   bool obstacle_site(int x, int y) const;
   void classify();
   void open_way_out();

@@ -32,6 +32,10 @@
 // the floor seen up to it), unlike an unknown cell of the camera's blind zone, which no view
 // ever covered; the planner may cross the latter near the robot, never the former. The mark
 // does not change the cell's log-odds and stays set.
+// Looked over (grid.looked_over_range_m): every cell a valid column's ray passes from the
+// camera up to that range, or to its end if nearer, the blind zone included. An unknown cell
+// near the robot that no ray ever passed over lay beside its way, out of the field of view,
+// where a low box's side may stand; the planner keeps clear of those. Also a mark only.
 // People walk on. Each cell remembers whether its last hit came from an obstacle at the
 // camera's height (DepthScanColumn::obstacle_at_camera_height). Such an obstacle is in view
 // at every range, so a ray that passes through the cell without ending there means it has
@@ -91,6 +95,7 @@ struct LogOddsModel {
   float min = -4.0F;
   float max = 4.0F;
   float in_view_range_m = 0.0F;  // grid.in_view_range_m (0: nothing is marked)
+  float looked_over_range_m = 0.0F;  // grid.looked_over_range_m (0: nothing is marked)
   float free_end_sigmas = 0.0F;  // grid.free_end_sigmas (0: a free column's misses are all alike)
   bool once_per_scan = false;    // grid.once_per_scan (see the header comment)
   static LogOddsModel from_config(const core::GridConfig& config);
@@ -119,9 +124,10 @@ struct GridSegment {
 class OccupancyGrid;
 // Classifies every cell of `grid` into `cells` (grid.geometry().cell_count() entries, row-major
 // like the grid), and, if `in_view` is given, writes 1 there for the cells that were in view
-// (OccupancyGrid::in_view), else 0. No allocation: the tick loop calls it after each roll-up.
+// (OccupancyGrid::in_view), else 0; likewise `looked_over` (OccupancyGrid::looked_over). No
+// allocation: the tick loop calls it after each roll-up.
 void classify_cells(const OccupancyGrid& grid, const CellThresholds& thresholds, CellState* cells,
-                    std::uint8_t* in_view = nullptr);
+                    std::uint8_t* in_view = nullptr, std::uint8_t* looked_over = nullptr);
 
 // One valid column of a scan, compact (robot frame at capture time): 16 bytes, so the ring of
 // 4096 scans x 640 columns stays at 42 MB.
@@ -201,6 +207,7 @@ class OccupancyGrid {
   const InsertCounts& insert_counts() const { return counts_; }
   bool same_cells_as(const OccupancyGrid& other) const;
   bool in_view(int cell_x, int cell_y) const { return (cell_flags_[index(cell_x, cell_y)] & kInView) != 0U; }
+  bool looked_over(int cell_x, int cell_y) const { return (cell_flags_[index(cell_x, cell_y)] & kLookedOver) != 0U; }
   // Cell containing a map-frame point; false when outside the grid.
   bool cell_of(double x_m, double y_m, int& cell_x, int& cell_y) const;
 
@@ -213,6 +220,7 @@ class OccupancyGrid {
   static constexpr std::uint8_t kLastHitAtCameraHeight = 1U;  // the cell's last hit was at the camera's height
   static constexpr std::uint8_t kHitThisScan = 2U;            // a column of the scan being inserted ends here
   static constexpr std::uint8_t kInView = 4U;                  // a column's view covered the cell
+  static constexpr std::uint8_t kLookedOver = 8U;              // a column's ray passed over it, blind zone too
 
   void add(int cell_x, int cell_y, float delta);
   void hit(int cell_x, int cell_y, bool at_camera_height);
@@ -237,13 +245,13 @@ class OccupancyGrid {
   void clear_camera_height_hits(double start_x, double start_y, double end_x, double end_y);
   // One column: origin and end point in the map frame.
   void insert_column(const Eigen::Vector2d& origin, const Eigen::Vector2d& end, const ScanPoint& point);
-  // Marks the cells from `from` to `to` (map frame), both cells included, as in view.
-  void mark_in_view(const Eigen::Vector2d& from, const Eigen::Vector2d& to);
+  // Sets `flag` in the cells from `from` to `to` (map frame), both cells included.
+  void mark_cells(const Eigen::Vector2d& from, const Eigen::Vector2d& to, std::uint8_t flag);
 
   GridGeometry geometry_;
   LogOddsModel model_;
   std::unique_ptr<float[]> cells_;
-  std::unique_ptr<std::uint8_t[]> cell_flags_;  // kLastHitAtCameraHeight | kHitThisScan | kInView
+  std::unique_ptr<std::uint8_t[]> cell_flags_;  // kLastHitAtCameraHeight | kHitThisScan | kInView | kLookedOver
   // once_per_scan: the number of the scan that last missed each cell, against scan_number_
   // (counts inserts from 1, wraps to 1 after 255 with every stamp reset); empty otherwise.
   // Scratch of one insert: never copied, compared or pasted.

@@ -73,7 +73,7 @@ struct Board {
 // The explorer's view of classified grid cells: the occupancy module's CellState codes read
 // as the explorer's bytes (the two enums have the same values, checked at compile time).
 explore::GridView navigation_view(const occupancy::GridGeometry& geometry, const occupancy::CellState* cells,
-                                  const std::uint8_t* in_view);
+                                  const std::uint8_t* in_view, const std::uint8_t* looked_over = nullptr);
 
 enum class Localization : std::uint8_t { rbpf, groundtruth, odometry };
 bool parse_localization(const std::string& text, Localization& localization);
@@ -228,6 +228,7 @@ class Stack {
   core::DepthScan seen_scan_;  // the last update's scan, for seen_ (scan_ is overwritten by a refused update too)
   std::vector<occupancy::CellState> cells_;  // the estimate's grid classified, the explorer's view
   std::vector<std::uint8_t> in_view_;        // its in-view marks, same layout
+  std::vector<std::uint8_t> looked_over_;    // its looked-over marks (empty: grid.looked_over_range_m 0)
   explore::GridView view_;
 
   // Sensors.
