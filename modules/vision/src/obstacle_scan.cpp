@@ -28,6 +28,7 @@ ObstacleScanParams scan_params_from_config(const core::VisionConfig& vision, con
   params.max_near_matches = vision.max_features;
   params.near_max_dense_valid = vision.scan_near_max_dense_valid;
   params.near_uniqueness = vision.scan_near_uniqueness;
+  params.near_window_px = vision.scan_near_window_px;
   return params;
 }
 
@@ -272,11 +273,12 @@ void ObstacleScanner::compute(const cv::Mat& disparity, const cv::Mat& left, dou
 bool ObstacleScanner::dense_matcher_found_little(const cv::Mat& disparity, const NearMatch& match) const {
   const auto cx = static_cast<int>(std::lround(match.x_left_px));
   const auto cy = static_cast<int>(std::lround(match.y_px));
+  const int radius = params_.near_window_px / 2;
   int pixels = 0;
   int valid = 0;
-  for (int y = std::max(cy - kNearWindowRadius, 0); y <= std::min(cy + kNearWindowRadius, disparity.rows - 1); ++y) {
+  for (int y = std::max(cy - radius, 0); y <= std::min(cy + radius, disparity.rows - 1); ++y) {
     const float* row = disparity.ptr<float>(y);
-    for (int x = std::max(cx - kNearWindowRadius, 0); x <= std::min(cx + kNearWindowRadius, disparity.cols - 1); ++x) {
+    for (int x = std::max(cx - radius, 0); x <= std::min(cx + radius, disparity.cols - 1); ++x) {
       ++pixels;
       valid += row[x] > 0.0F ? 1 : 0;
     }
@@ -301,7 +303,7 @@ int patch_difference(const cv::Mat& left, const cv::Mat& right, int x, int y, in
 }  // namespace
 
 bool ObstacleScanner::matches_only_that_near(const cv::Mat& left, const cv::Mat& right, const NearMatch& match) const {
-  const int radius = kNearWindowRadius;
+  const int radius = params_.near_window_px / 2;
   const auto x = static_cast<int>(std::lround(match.x_left_px));
   const auto y = static_cast<int>(std::lround(match.y_px));
   const auto d = static_cast<int>(std::lround(match.disparity_px));

@@ -69,11 +69,11 @@
 // near: a match whose disparity exceeds the dense matcher's, above the floor and below the
 // robot, becomes its column's obstacle unless the column already holds a nearer one it
 // measured, if three things hold. The dense matcher found little around it: at most
-// near_max_dense_valid of the disparities within kNearWindowRadius pixels are valid (a surface
+// near_max_dense_valid of the disparities in the near_window_px square around it are valid (a surface
 // nearer than its reach has no match in its range, so it leaves holes; where it found a
 // surface, the sparse match is a repeated texture matched one period off, the simulated
 // clutter hall's every frame). Its patch matches only that near: the sum of absolute
-// differences of the (2 kNearWindowRadius + 1)^2 patch at its disparity (give or take a pixel)
+// differences of that square patch at its disparity (give or take a pixel)
 // is below near_uniqueness times the smallest at any disparity the dense matcher covers (a
 // repeated texture the dense matcher left holes in, for its ambiguity, matches a period
 // nearer as well). And near_min_matches such matches (itself included) lie within
@@ -130,6 +130,8 @@ struct ObstacleScanParams {
   // ... and where its patch's difference at its disparity is below this fraction of the
   // smallest at any disparity the dense matcher covers (vision.scan_near_uniqueness).
   double near_uniqueness = 0.7;
+  // ... both judged in this square window around the match, odd (vision.scan_near_window_px).
+  int near_window_px = 11;
 };
 
 ObstacleScanParams scan_params_from_config(const core::VisionConfig& vision, const core::RobotConfig& robot);
@@ -179,8 +181,6 @@ class ObstacleScanner {
     double y_m = 0.0;
     bool at_camera_height = false;
   };
-  // The window add_near_matches looks at in the dense disparities: 11 x 11 pixels.
-  static constexpr int kNearWindowRadius = 5;
   bool dense_matcher_found_little(const cv::Mat& disparity, const NearMatch& match) const;
   bool matches_only_that_near(const cv::Mat& left, const cv::Mat& right, const NearMatch& match) const;
   std::size_t near_points_of(const NearMatch* matches, std::size_t count, const cv::Mat& disparity,
