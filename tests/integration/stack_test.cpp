@@ -168,7 +168,7 @@ TEST_F(StackRun, SnapshotsOfTheNavigationGridLeaveTheRunAsItWas) {
     files.push_back(entry.path().filename().string());
   }
   std::sort(files.begin(), files.end());
-  ASSERT_EQ(files.size(), 7U);  // two times, each .pgm, .yaml and .png, and navigation.csv
+  ASSERT_EQ(files.size(), 9U);  // two times, each .pgm, .yaml, .png and -plan.csv, and navigation.csv
   EXPECT_EQ(files.back(), "navigation.csv");
   EXPECT_EQ(files.front().rfind("navigation-4.5", 0), 0U) << files.front();
   std::ifstream summary(dir_ / "snapped" / "snapshots" / "navigation.csv");
@@ -176,6 +176,9 @@ TEST_F(StackRun, SnapshotsOfTheNavigationGridLeaveTheRunAsItWas) {
   int lines = 0;
   while (std::getline(summary, line)) ++lines;
   EXPECT_EQ(lines, 3);  // the header and one line a snapshot
+  std::ifstream plan(dir_ / "snapped" / "snapshots" / "navigation-8.0-plan.csv");
+  ASSERT_TRUE(std::getline(plan, line));
+  EXPECT_EQ(line, "x_m,y_m,narrow");
 
   const test::CommandResult bad = test::run_stereoscout("explore --config " + (dir_ / "config.yaml").string() +
                                                         " --snapshot-at 4,soon --out " + (dir_ / "bad").string());

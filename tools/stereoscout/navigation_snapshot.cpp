@@ -92,6 +92,18 @@ std::string append_summary(const stack::Stack& stack, const std::string& path, d
   return written ? std::string() : path + ": cannot write";
 }
 
+// The current plan, one waypoint a line, in the map frame: where the follower was steering.
+std::string write_plan_csv(const explore::Plan& plan, const std::string& path) {
+  std::FILE* file = std::fopen(path.c_str(), "w");
+  if (file == nullptr) return path + ": cannot write";
+  std::fprintf(file, "x_m,y_m,narrow\n");
+  for (std::size_t k = 0; k < plan.waypoints.size(); ++k) {
+    std::fprintf(file, "%.3f,%.3f,%d\n", plan.waypoints[k].x(), plan.waypoints[k].y(), plan.narrow[k] ? 1 : 0);
+  }
+  const bool written = std::fclose(file) == 0;
+  return written ? std::string() : path + ": cannot write";
+}
+
 }  // namespace
 
 bool parse_snapshot_times(const std::string& text, std::vector<double>& times, std::string& error) {
@@ -128,6 +140,7 @@ std::string write_navigation_snapshot(const stack::Stack& stack, const std::stri
       cropped_to_known(navigation_map_of(planned_on.cells != nullptr ? planned_on : stack.grid_view()), kMarginCells);
   std::string error = occupancy::write_ros_map(map, base + ".pgm", base + ".yaml");
   if (error.empty()) error = write_map_png(magnified(map, kPixelsPerCell), map_overlays(stack), base + ".png");
+  if (error.empty()) error = write_plan_csv(stack.explorer().plan(), base + "-plan.csv");
   if (error.empty()) error = append_summary(stack, folder + "/navigation.csv", requested_s);
   return error;
 }
