@@ -338,6 +338,7 @@ void Explorer::check_plan(const ExploreInput& input) {
     }
   }
   stop_waiting_for_walkers(input.time_s);
+  if (params_.explore.refit_kept_plans) planner_.refit(map_, plan_, follower_.progress() + 1);
 }
 
 // A plan that the next view blocks, again and again, runs through a gap each view opens and

@@ -155,7 +155,7 @@ PlanResult PathPlanner::plan(const NavigationMap& map, const Eigen::Vector2i& st
     plan.waypoints[k] = grid.center(cell % width_, cell / width_);
     plan.narrow[k] = narrow(map, cell % width_, cell / width_);
   }
-  centre_in_gaps(map, plan);
+  centre_in_gaps(map, plan, 1);
   plan.cost = static_cast<double>(cost_[static_cast<std::size_t>(goal_cell)]);
   return PlanResult::found;
 }
@@ -165,10 +165,16 @@ bool PathPlanner::narrow(const NavigationMap& map, int x, int y) const {
   return map.traversability(x, y) != Traversability::safe || map.occupied_distance_m(x, y) < narrow_clearance_m_;
 }
 
-void PathPlanner::centre_in_gaps(const NavigationMap& map, Plan& plan) const {
+void PathPlanner::refit(const NavigationMap& map, Plan& plan, std::size_t first) const {
+  for (std::size_t k = first; k < plan.cells.size(); ++k) plan.narrow[k] = narrow(map, plan.cells[k].x(), plan.cells[k].y());
+  centre_in_gaps(map, plan, std::max<std::size_t>(first, 1));
+}
+
+// The first and last waypoints stay at their cells' centres (the robot's cell, the goal's).
+void PathPlanner::centre_in_gaps(const NavigationMap& map, Plan& plan, std::size_t first) const {
   if (gap_centring_reach_m_ <= 0.0) return;  // off: the cells' centres, as set
   const std::size_t count = plan.cells.size();
-  for (std::size_t k = 1; k + 1 < count; ++k) {
+  for (std::size_t k = first; k + 1 < count; ++k) {
     const Eigen::Vector2i along = plan.cells[k + 1] - plan.cells[k - 1];
     plan.waypoints[k] = map.centred_in_gap(plan.cells[k], along.cast<double>(), gap_centring_reach_m_);
   }

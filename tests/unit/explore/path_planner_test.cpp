@@ -171,6 +171,47 @@ TEST(PathPlanner, PlansTakeTheDoorRatherThanAGapThroughAWallSeenStanding) {
   EXPECT_FALSE(remembering.passable(30, 20));
 }
 
+// A plan made across an open room, kept after a wall with a door went up around it (still
+// passable, 0.05 m off the door's middle): refit judges its cells on the new map, as a plan
+// made on it would have them, in the door's middle and narrow there; before it they are as
+// the open room had them.
+TEST(PathPlanner, RefitMovesAKeptPlanIntoTheMiddleOfADoorMappedSinceItWasMade) {
+  WalledRoom room;
+  auto& [params, map, planner, plan, grid] = room;
+  const Eigen::Vector2d robot(1.0, 2.0);
+  ASSERT_TRUE(map.rebuild(grid.view(), robot, robot));
+  ASSERT_EQ(planner.plan(map, {10, 19}, {50, 19}, plan), PlanResult::found);
+  std::size_t in_wall = plan.cells.size();
+  for (std::size_t k = 0; k < plan.cells.size(); ++k) {
+    if (plan.cells[k].x() == 30) in_wall = k;
+  }
+  ASSERT_LT(in_wall, plan.cells.size());
+  ASSERT_EQ(plan.cells[in_wall].y(), 19);
+  EXPECT_FALSE(plan.narrow[in_wall]);
+
+  grid.fill(30, 0, 31, 15, CellState::occupied);
+  grid.fill(30, 23, 31, 40, CellState::occupied);  // jamb cells' centres at y 1.45 and 2.35 m
+  ASSERT_TRUE(map.rebuild(grid.view(), robot, robot));
+  ASSERT_TRUE(map.passable(30, 19));
+  EXPECT_NEAR(plan.waypoints[in_wall].y(), 1.95, 1e-9);  // kept as made
+  const Eigen::Vector2d first = plan.waypoints[0];
+  planner.refit(map, plan, 1);
+  EXPECT_NEAR(plan.waypoints[in_wall].y(), 1.9, 1e-9);
+  EXPECT_NEAR(plan.waypoints[in_wall].x(), 3.05, 1e-9);
+  EXPECT_TRUE(plan.narrow[in_wall]);
+  EXPECT_EQ(plan.waypoints[0], first);  // the robot's own cell stays its centre
+  EXPECT_EQ(plan.waypoints[plan.cells.size() - 1], grid.view().center(50, 19));
+  // The wall gone again: a refit from beyond the door leaves it alone, one from before it
+  // puts it back at its cell's centre.
+  grid.fill(30, 1, 31, 39, CellState::free);
+  ASSERT_TRUE(map.rebuild(grid.view(), robot, robot));
+  planner.refit(map, plan, in_wall + 1);
+  EXPECT_NEAR(plan.waypoints[in_wall].y(), 1.9, 1e-9);
+  planner.refit(map, plan, 1);
+  EXPECT_NEAR(plan.waypoints[in_wall].y(), 1.95, 1e-9);
+  EXPECT_FALSE(plan.narrow[in_wall]);
+}
+
 // A person walked into the robot (radius 0.35 m) and left a cell 0.28 m from its centre: not
 // deep under it, so an obstacle, and the robot's own cell and all its neighbours are lethal.
 // Plans still leave, across the cells under the disc and away from the cell, also to a goal

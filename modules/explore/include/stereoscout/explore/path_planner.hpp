@@ -45,6 +45,10 @@ class PathPlanner {
   // Plans from `start` (the robot's cell; it may itself be non-passable) to `goal`.
   PlanResult plan(const NavigationMap& map, const Eigen::Vector2i& start, const Eigen::Vector2i& goal, Plan& plan);
   std::uint64_t expansions() const { return expansions_; }  // cells closed, all plans
+  // The plan's cells from `first` on, judged again on a rebuilt map: `narrow` and the
+  // waypoints' places in the gaps as planning on this map would set them. A plan made while a
+  // door's jambs were not yet in the map runs through the door at its cells' centres.
+  void refit(const NavigationMap& map, Plan& plan, std::size_t first) const;
 
  private:
   void push_or_decrease(std::int32_t cell, float cost);
@@ -54,7 +58,7 @@ class PathPlanner {
   void sift_down(std::size_t position);
   float heuristic(std::int32_t cell) const;
   // Moves the waypoints in narrow gaps to their middle (explore.gap_centring_reach_m).
-  void centre_in_gaps(const NavigationMap& map, Plan& plan) const;
+  void centre_in_gaps(const NavigationMap& map, Plan& plan, std::size_t first) const;
   bool narrow(const NavigationMap& map, int x, int y) const;
 
   std::size_t capacity_;
