@@ -8,8 +8,8 @@
 // allocation scope, at the first tick at or after T, as snapshots/navigation-<T>.pgm + .yaml
 // (map_server format: the known part of the navigation grid and a metre around it) and .png
 // (the same, 5 pixels a cell, with the trajectory in blue, odometry in red, the plan in
-// green) and -plan.csv (the plan's waypoints), and appends a line to snapshots/navigation.csv: T, the tick's time, the explorer's
-// pose, state and goal, and the plan's length.
+// green) and -plan.csv (the plan's waypoints), and appends a line to snapshots/navigation.csv:
+// T, the tick's time, the explorer's pose, state and goal, and the plan's length.
 
 #include <string>
 #include <vector>
