@@ -19,7 +19,8 @@ namespace stereoscout::explore {
 // cell's centre, in the gap's middle. `narrow` marks the waypoints whose cell lay within the
 // safety margin of an obstacle, or nearer than explore.narrow_clearance_m to one, when the
 // plan was made (a doorway, a gap between furniture): there the follower keeps closer to the
-// path (explore.narrow_lookahead_m).
+// path (explore.narrow_lookahead_m). With explore.refit_kept_plans both are set again on
+// each map rebuild (PathPlanner::refit).
 struct Plan {
   explicit Plan(std::size_t capacity) : cells(capacity), waypoints(capacity), narrow(capacity) {}
   void clear() {
