@@ -7,8 +7,51 @@ set(STEREOSCOUT_WARNINGS -Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wsign-c
 # makes a replay on the desk reproduce a run on the robot bit for bit.
 set(STEREOSCOUT_DETERMINISM_FLAGS -ffp-contract=off)
 
+# Precompiled headers. Every translation unit reaches Eigen and OpenCV's core through
+# stereoscout/core, and every test GoogleTest: parsing them was most of a source file's compile
+# time (docs/results.md, "CI and build times"). They are compiled once per build, in
+# stereoscout_pch (and stereoscout_test_pch for test executables), and every target reuses
+# them. Only headers from outside the tree: a change to ours does not rebuild them.
+# A target whose flags the compiler finds incompatible with them (a source file's own options)
+# reads the headers as text instead, with the same result.
+option(STEREOSCOUT_PRECOMPILED_HEADERS "Compile the heavy external headers once and reuse them" ON)
+set(STEREOSCOUT_PCH_HEADERS <algorithm> <cmath> <cstdint> <cstdio> <memory> <string> <vector>
+    <Eigen/Core> <Eigen/Geometry> <opencv2/core.hpp>)
+
 function(stereoscout_target_defaults target)
+  stereoscout_target_defaults_with(${target} stereoscout_pch)
+endfunction()
+
+# The same, with the precompiled headers of `pch` (stereoscout_pch or stereoscout_test_pch).
+function(stereoscout_target_defaults_with target pch)
   target_compile_options(${target} PRIVATE ${STEREOSCOUT_WARNINGS} ${STEREOSCOUT_DETERMINISM_FLAGS})
+  if(TARGET ${pch})
+    target_precompile_headers(${target} REUSE_FROM ${pch})
+    # Where the headers are, should the compiler read them as text.
+    target_link_libraries(${target} PRIVATE $<BUILD_INTERFACE:stereoscout_pch_includes>)
+  endif()
+endfunction()
+
+# stereoscout_add_precompiled_headers(): the targets that hold the shared precompiled headers;
+# called once, after the packages are found and before any target uses them.
+function(stereoscout_add_precompiled_headers)
+  if(NOT STEREOSCOUT_PRECOMPILED_HEADERS)
+    return()
+  endif()
+  add_library(stereoscout_pch_includes INTERFACE)
+  target_include_directories(stereoscout_pch_includes SYSTEM INTERFACE
+    $<TARGET_PROPERTY:Eigen3::Eigen,INTERFACE_INCLUDE_DIRECTORIES>
+    $<TARGET_PROPERTY:OpenCV::core,INTERFACE_INCLUDE_DIRECTORIES>)
+  add_library(stereoscout_pch OBJECT ${PROJECT_SOURCE_DIR}/cmake/precompiled_headers.cpp)
+  target_link_libraries(stereoscout_pch PRIVATE stereoscout_pch_includes)
+  target_compile_options(stereoscout_pch PRIVATE ${STEREOSCOUT_WARNINGS} ${STEREOSCOUT_DETERMINISM_FLAGS})
+  target_precompile_headers(stereoscout_pch PRIVATE ${STEREOSCOUT_PCH_HEADERS})
+  if(STEREOSCOUT_BUILD_TESTS)
+    add_library(stereoscout_test_pch OBJECT ${PROJECT_SOURCE_DIR}/cmake/precompiled_headers.cpp)
+    target_link_libraries(stereoscout_test_pch PRIVATE stereoscout_pch_includes GTest::gtest)
+    target_compile_options(stereoscout_test_pch PRIVATE ${STEREOSCOUT_WARNINGS} ${STEREOSCOUT_DETERMINISM_FLAGS})
+    target_precompile_headers(stereoscout_test_pch PRIVATE ${STEREOSCOUT_PCH_HEADERS} <gtest/gtest.h>)
+  endif()
 endfunction()
 
 # stereoscout_add_module(<name> SOURCES ... [DEPENDS ...])
@@ -38,7 +81,7 @@ function(stereoscout_add_test name)
   target_compile_definitions(${name} PRIVATE
     STEREOSCOUT_TEST_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     STEREOSCOUT_TEST_DATA_DIR="${STEREOSCOUT_DATA_DIR}")
-  stereoscout_target_defaults(${name})
+  stereoscout_target_defaults_with(${name} stereoscout_test_pch)
   if(NOT ARG_LABELS)
     set(ARG_LABELS unit)
   endif()
