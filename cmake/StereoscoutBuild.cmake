@@ -12,8 +12,10 @@ set(STEREOSCOUT_DETERMINISM_FLAGS -ffp-contract=off)
 # time (docs/results.md, "CI and build times"). They are compiled once per build, in
 # stereoscout_pch (and stereoscout_test_pch for test executables), and every target reuses
 # them. Only headers from outside the tree: a change to ours does not rebuild them.
-# A target whose flags the compiler finds incompatible with them (a source file's own options)
-# reads the headers as text instead, with the same result.
+# A precompiled file the compiler finds incompatible is an error (CMake adds -Winvalid-pch,
+# and warnings are errors). A source file with compile options of its own must skip them
+# (SKIP_PRECOMPILE_HEADERS): compiled with its options, the dense matcher ran 7 times slower
+# with them (modules/vision/CMakeLists.txt).
 option(STEREOSCOUT_PRECOMPILED_HEADERS "Compile the heavy external headers once and reuse them" ON)
 set(STEREOSCOUT_PCH_HEADERS <algorithm> <cmath> <cstdint> <cstdio> <memory> <string> <vector>
     <Eigen/Core> <Eigen/Geometry> <opencv2/core.hpp>)
@@ -27,7 +29,7 @@ function(stereoscout_target_defaults_with target pch)
   target_compile_options(${target} PRIVATE ${STEREOSCOUT_WARNINGS} ${STEREOSCOUT_DETERMINISM_FLAGS})
   if(TARGET ${pch})
     target_precompile_headers(${target} REUSE_FROM ${pch})
-    # Where the headers are, should the compiler read them as text.
+    # Where the headers are, for a source file that skips them and reads them as text.
     target_link_libraries(${target} PRIVATE $<BUILD_INTERFACE:stereoscout_pch_includes>)
   endif()
 endfunction()
