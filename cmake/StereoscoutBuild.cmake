@@ -29,8 +29,6 @@ function(stereoscout_target_defaults_with target pch)
   target_compile_options(${target} PRIVATE ${STEREOSCOUT_WARNINGS} ${STEREOSCOUT_DETERMINISM_FLAGS})
   if(TARGET ${pch})
     target_precompile_headers(${target} REUSE_FROM ${pch})
-    # Where the headers are, for a source file that skips them and reads them as text.
-    target_link_libraries(${target} PRIVATE $<BUILD_INTERFACE:stereoscout_pch_includes>)
   endif()
 endfunction()
 
@@ -40,20 +38,20 @@ function(stereoscout_add_precompiled_headers)
   if(NOT STEREOSCOUT_PRECOMPILED_HEADERS)
     return()
   endif()
-  add_library(stereoscout_pch_includes INTERFACE)
-  target_include_directories(stereoscout_pch_includes SYSTEM INTERFACE
-    $<TARGET_PROPERTY:Eigen3::Eigen,INTERFACE_INCLUDE_DIRECTORIES>
-    $<TARGET_PROPERTY:OpenCV::core,INTERFACE_INCLUDE_DIRECTORIES>)
-  add_library(stereoscout_pch OBJECT ${PROJECT_SOURCE_DIR}/cmake/precompiled_headers.cpp)
-  target_link_libraries(stereoscout_pch PRIVATE stereoscout_pch_includes)
-  target_compile_options(stereoscout_pch PRIVATE ${STEREOSCOUT_WARNINGS} ${STEREOSCOUT_DETERMINISM_FLAGS})
-  target_precompile_headers(stereoscout_pch PRIVATE ${STEREOSCOUT_PCH_HEADERS})
+  stereoscout_add_pch_target(stereoscout_pch Eigen3::Eigen OpenCV::core)
   if(STEREOSCOUT_BUILD_TESTS)
-    add_library(stereoscout_test_pch OBJECT ${PROJECT_SOURCE_DIR}/cmake/precompiled_headers.cpp)
-    target_link_libraries(stereoscout_test_pch PRIVATE stereoscout_pch_includes GTest::gtest)
-    target_compile_options(stereoscout_test_pch PRIVATE ${STEREOSCOUT_WARNINGS} ${STEREOSCOUT_DETERMINISM_FLAGS})
-    target_precompile_headers(stereoscout_test_pch PRIVATE ${STEREOSCOUT_PCH_HEADERS} <gtest/gtest.h>)
+    stereoscout_add_pch_target(stereoscout_test_pch Eigen3::Eigen OpenCV::core GTest::gtest HEADERS <gtest/gtest.h>)
   endif()
+endfunction()
+
+# stereoscout_add_pch_target(<name> <packages>... [HEADERS <more headers>...]): a target that
+# compiles STEREOSCOUT_PCH_HEADERS (and HEADERS) with the packages' include directories.
+function(stereoscout_add_pch_target name)
+  cmake_parse_arguments(ARG "" "" "HEADERS" ${ARGN})
+  add_library(${name} OBJECT ${PROJECT_SOURCE_DIR}/cmake/precompiled_headers.cpp)
+  target_link_libraries(${name} PRIVATE ${ARG_UNPARSED_ARGUMENTS})
+  target_compile_options(${name} PRIVATE ${STEREOSCOUT_WARNINGS} ${STEREOSCOUT_DETERMINISM_FLAGS})
+  target_precompile_headers(${name} PRIVATE ${STEREOSCOUT_PCH_HEADERS} ${ARG_HEADERS})
 endfunction()
 
 # stereoscout_add_module(<name> SOURCES ... [DEPENDS ...])
