@@ -1,5 +1,7 @@
 #include "stereoscout/explore/door_sighting.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace stereoscout::explore {
@@ -23,12 +25,89 @@ bool meet_door_line(const Eigen::Vector2d& origin, const Eigen::Vector2d& point,
   return true;
 }
 
+// A least-squares line through points given relative to a reference point.
+class LineFit {
+ public:
+  void add(const Eigen::Vector2d& point) {
+    ++count_;
+    sum_ += point;
+    sxx_ += point.x() * point.x();
+    sxy_ += point.x() * point.y();
+    syy_ += point.y() * point.y();
+  }
+  int count() const { return count_; }
+  // The points' centroid and the line's direction (unit; its sign arbitrary); false for fewer
+  // than two points.
+  bool line(Eigen::Vector2d& centroid, Eigen::Vector2d& direction) const {
+    if (count_ < 2) return false;
+    centroid = sum_ / count_;
+    const double cxx = sxx_ / count_ - centroid.x() * centroid.x();
+    const double cxy = sxy_ / count_ - centroid.x() * centroid.y();
+    const double cyy = syy_ / count_ - centroid.y() * centroid.y();
+    const double angle = 0.5 * std::atan2(2.0 * cxy, cxx - cyy);
+    direction = {std::cos(angle), std::sin(angle)};
+    return true;
+  }
+
+ private:
+  int count_ = 0;
+  Eigen::Vector2d sum_ = Eigen::Vector2d::Zero();
+  double sxx_ = 0.0;
+  double sxy_ = 0.0;
+  double syy_ = 0.0;
+};
+
+// The line through the wall points `for_each_point(visit)` hands to `visit` (relative to the
+// door's middle): fitted to all, then twice to those within `tolerance_m` of the last fit. Its
+// direction's angle (map frame) in `angle_rad`, a point on it in `through`; false with fewer
+// than `min_points` kept or spread less than DoorSighting::kHeadingMinSpan_m along it.
+template <typename ForEachPoint>
+bool fit_wall_line(ForEachPoint for_each_point, double tolerance_m, int min_points, double& angle_rad,
+                   Eigen::Vector2d& through) {
+  LineFit fit;
+  for_each_point([&](const Eigen::Vector2d& point) { fit.add(point); });
+  Eigen::Vector2d centroid;
+  Eigen::Vector2d direction;
+  for (int refit = 0; refit < 2; ++refit) {
+    if (!fit.line(centroid, direction)) return false;
+    const Eigen::Vector2d normal = left_of(direction);
+    LineFit closer;
+    for_each_point([&](const Eigen::Vector2d& point) {
+      if (std::abs((point - centroid).dot(normal)) <= tolerance_m) closer.add(point);
+    });
+    fit = closer;
+  }
+  if (fit.count() < min_points || !fit.line(centroid, direction)) return false;
+  double lowest = 0.0;
+  double highest = 0.0;
+  const Eigen::Vector2d normal = left_of(direction);
+  for_each_point([&](const Eigen::Vector2d& point) {
+    if (std::abs((point - centroid).dot(normal)) > tolerance_m) return;
+    const double along = (point - centroid).dot(direction);
+    lowest = std::min(lowest, along);
+    highest = std::max(highest, along);
+  });
+  if (highest - lowest < DoorSighting::kHeadingMinSpan_m) return false;
+  angle_rad = std::atan2(direction.y(), direction.x());
+  through = centroid;
+  return true;
+}
+
+// Whether `point` (relative to the door's middle) lies where the wall beside `door` is looked
+// for: beyond either jamb up to kHeadingWallReach_m across, within kHeadingBand_m of its line.
+bool beside_door(const Eigen::Vector2d& point, const DoorPassage& door) {
+  const double across = std::abs(point.dot(left_of(door.along)));
+  return std::abs(point.dot(door.along)) <= DoorSighting::kHeadingBand_m && across >= 0.5 * door.width_m &&
+         across <= DoorSighting::kHeadingWallReach_m;
+}
+
 }  // namespace
 
 DoorSighting::DoorSighting(const ExploreParams& params)
     : range_m_(params.explore.door_sighting_range_m),
       max_offset_m_(params.explore.door_sighting_max_offset_m),
       wall_from_scan_(params.explore.door_wall_from_scan),
+      correct_heading_(params.explore.door_sighting_heading),
       baseline_m_(params.camera_baseline_m) {}
 
 bool DoorSighting::wants(const SeenObstacles& seen) const {
@@ -48,23 +127,57 @@ void DoorSighting::observe(const SeenObstacles& seen, const DoorPassage& door, c
     ++counters_.not_in_a_wall;
     return;
   }
+  core::Pose2 pose = seen.pose;
+  const HeadingSource heading = correct_heading_ ? scan_heading(seen, door, grid, pose) : HeadingSource::none;
   DoorGap gap;
-  if (!measure(*seen.scan, seen.pose, seen.pan_rad, door, gap)) return;
-  if (!wall_in_grid && !wall_in_scan(*seen.scan, seen.pose, door, gap)) {
+  if (!measure(*seen.scan, pose, seen.pan_rad, door, gap)) return;
+  if (!wall_in_grid && !wall_in_scan(*seen.scan, pose, door, gap)) {
     ++counters_.not_in_a_wall;
     return;
   }
   const Eigen::Vector2d across = left_of(door.along);
   offset_ = (door.middle - 0.5 * (gap.left + gap.right)).dot(across) * across;
+  heading_correction_rad_ = core::wrap_angle(pose.theta - seen.pose.theta);
   if (!held_) ++counters_.doors_sighted;
   ++counters_.sightings;
+  count_heading(heading);
+  heading_held_ = heading == HeadingSource::wall || heading == HeadingSource::held;
   held_ = true;
   door_ = door;
-  sighted_pose_ = core::Pose2{seen.pose.x + offset_.x(), seen.pose.y + offset_.y(), seen.pose.theta};
+  sighted_pose_ = core::Pose2{pose.x + offset_.x(), pose.y + offset_.y(), pose.theta};
   sighted_odometry_ = seen.odometry;
 }
 
-void DoorSighting::release() { held_ = false; }
+void DoorSighting::release() {
+  held_ = false;
+  heading_held_ = false;
+}
+
+// The heading from the wall beside the door; else, while a sighting of this door whose heading
+// was corrected is held, the heading it carries by the odometry (nearer than about 1.1 m the
+// matcher measures no wall in the image's outer band); else the estimate's.
+DoorSighting::HeadingSource DoorSighting::scan_heading(const SeenObstacles& seen, const DoorPassage& door,
+                                                       const GridView& grid, core::Pose2& pose) const {
+  double correction_rad = 0.0;
+  if (heading_error(*seen.scan, seen.pose, door, grid, correction_rad)) {
+    pose.theta = core::wrap_angle(seen.pose.theta + correction_rad);
+    return HeadingSource::wall;
+  }
+  if (held_ && heading_held_ && same_door(door, door_)) {
+    pose.theta = sighted_pose_.compose(sighted_odometry_.between(seen.odometry)).theta;
+    return HeadingSource::held;
+  }
+  return HeadingSource::unmeasured;
+}
+
+void DoorSighting::count_heading(HeadingSource heading) {
+  switch (heading) {
+    case HeadingSource::none: break;
+    case HeadingSource::wall: ++counters_.headings_corrected; break;
+    case HeadingSource::held: ++counters_.headings_carried; break;
+    case HeadingSource::unmeasured: ++counters_.heading_unmeasured; break;
+  }
+}
 
 core::Pose2 DoorSighting::navigation_pose(const core::Pose2& pose, const core::Pose2& odometry) {
   if (!held_) return pose;
@@ -181,6 +294,88 @@ bool DoorSighting::measure(const core::DepthScan& scan, const core::Pose2& pose,
   }
   ++counters_.no_gap;
   return false;
+}
+
+bool DoorSighting::heading_error(const core::DepthScan& scan, const core::Pose2& pose, const DoorPassage& door,
+                                 const GridView& grid, double& correction_rad) {
+  double grid_angle = 0.0;
+  Eigen::Vector2d grid_through;
+  if (!grid_wall_line(door, grid, grid_angle, grid_through)) return false;
+  // The turn about the robot that brings the most of the scan's points beside the door onto
+  // one line along the grid's wall and near it (the pose may be off along the door's axis
+  // too): points seen through the door into the room beyond, or of a chair before the wall,
+  // lie off it.
+  const Eigen::Vector2d grid_normal(-std::sin(grid_angle), std::cos(grid_angle));
+  const Eigen::Vector2d robot = pose.translation() - door.middle;
+  const int steps = static_cast<int>(std::lround(kMaxHeadingError_deg / kHeadingSearchStep_deg));
+  HeadingSearch best;
+  for (int step = -steps; step <= steps; ++step) {
+    const double turn = core::degrees_to_radians(step * kHeadingSearchStep_deg);
+    const Eigen::Rotation2Dd rotation(turn);
+    std::array<int, kHeadingOffsetBins> bins{};
+    for_each_scan_point(scan, pose, door, [&](const Eigen::Vector2d& point) {
+      const double offset = (robot + rotation * (point - robot) - grid_through).dot(grid_normal);
+      const int bin = static_cast<int>(std::floor((offset + kHeadingLineGap_m) / kHeadingFitTolerance_m));
+      if (bin >= 0 && bin < kHeadingOffsetBins) ++bins[static_cast<std::size_t>(bin)];
+    });
+    for (std::size_t bin = 0; bin + 1 < bins.size(); ++bin) {
+      const int on_line = bins[bin] + bins[bin + 1];
+      if (on_line <= best.on_line) continue;
+      best.on_line = on_line;
+      best.turn_rad = turn;
+      best.offset_m = -kHeadingLineGap_m + (static_cast<double>(bin) + 1.0) * kHeadingFitTolerance_m;
+    }
+  }
+  if (best.on_line < kHeadingMinColumns) return false;
+  // The line through those points, fitted in the scan's own frame, and its spread.
+  const Eigen::Rotation2Dd rotation(best.turn_rad);
+  LineFit fit;
+  double lowest = 0.0;
+  double highest = 0.0;
+  const Eigen::Vector2d grid_along(std::cos(grid_angle), std::sin(grid_angle));
+  for_each_scan_point(scan, pose, door, [&](const Eigen::Vector2d& point) {
+    const Eigen::Vector2d turned = robot + rotation * (point - robot) - grid_through;
+    if (std::abs(turned.dot(grid_normal) - best.offset_m) > kHeadingFitTolerance_m) return;
+    fit.add(point);
+    lowest = std::min(lowest, turned.dot(grid_along));
+    highest = std::max(highest, turned.dot(grid_along));
+  });
+  Eigen::Vector2d centroid;
+  Eigen::Vector2d direction;
+  if (highest - lowest < kHeadingMinSpan_m || !fit.line(centroid, direction)) return false;
+  // Lines have no direction: the turn lies within a quarter turn either way.
+  double turn = core::wrap_angle(grid_angle - std::atan2(direction.y(), direction.x()));
+  if (turn > 0.5 * core::kPi) turn -= core::kPi;
+  if (turn < -0.5 * core::kPi) turn += core::kPi;
+  if (std::abs(turn) > core::degrees_to_radians(kMaxHeadingError_deg)) return false;
+  correction_rad = turn;
+  return true;
+}
+
+bool DoorSighting::grid_wall_line(const DoorPassage& door, const GridView& grid, double& angle_rad,
+                                  Eigen::Vector2d& through) {
+  const double reach = kHeadingWallReach_m + kHeadingBand_m;
+  const Eigen::Vector2i low = grid.cell_of(door.middle - Eigen::Vector2d(reach, reach));
+  const Eigen::Vector2i high = grid.cell_of(door.middle + Eigen::Vector2d(reach, reach));
+  const auto grid_cells = [&](const auto& visit) {
+    for (int y = std::max(low.y(), 0); y <= std::min(high.y(), grid.height - 1); ++y) {
+      for (int x = std::max(low.x(), 0); x <= std::min(high.x(), grid.width - 1); ++x) {
+        const Eigen::Vector2d point = grid.center(x, y) - door.middle;
+        if (grid.at(x, y) == CellState::occupied && beside_door(point, door)) visit(point);
+      }
+    }
+  };
+  return fit_wall_line(grid_cells, std::max(kHeadingFitTolerance_m, kHeadingCellTolerance * grid.resolution_m),
+                       kHeadingMinCells, angle_rad, through);
+}
+
+template <typename Visit>
+void DoorSighting::for_each_scan_point(const core::DepthScan& scan, const core::Pose2& pose, const DoorPassage& door,
+                                       Visit visit) {
+  Eigen::Vector2d point;
+  for (int column = 0; column < static_cast<int>(scan.columns.size()); ++column) {
+    if (measured_point(scan, pose, column, point) && beside_door(point - door.middle, door)) visit(point - door.middle);
+  }
 }
 
 bool DoorSighting::in_a_wall(const DoorPassage& door, const GridView& grid) {

@@ -160,7 +160,7 @@ const ExploreInput& Explorer::navigation_input(const ExploreInput& input) {
     navigation_input_.pose = sighting_.navigation_pose(input.pose, input.odometry);
     if (sighting_.counters().sightings > sightings) note_sighting(navigation_input_);
   }
-  seen_shift_ = position_of(navigation_input_.pose) - position_of(input.pose);
+  seen_correction_ = sighting_.holding() ? navigation_input_.pose.compose(input.pose.inverse()) : core::Pose2{};
   return navigation_input_;
 }
 
@@ -933,7 +933,7 @@ bool Explorer::scan_blocks_disc(const SeenObstacles& seen, const Eigen::Vector2d
   const double deep = std::max(0.0, radius - kScanGuardDeep_m);
   int inside = 0;
   for (std::size_t i = 0; i < seen.count; ++i) {
-    const Eigen::Vector2d point = seen.points[i] + seen_shift_;
+    const Eigen::Vector2d point = seen_correction_.transform_point(seen.points[i]);
     if (move_touches(point, centre, robot, radius, deep) && ++inside >= params_.explore.scan_guard_min_points) {
       return true;
     }

@@ -259,6 +259,58 @@ TEST(DoorSighting, WithTheWallFromTheScanSightsADoorTheGridHoldsNoWallBeside) {
   EXPECT_EQ(grid_only.counters().not_in_a_wall, 1U);
 }
 
+// The robot 0.12 m west of the door's middle believes it is 0.03 m east and turned 8 degrees
+// to its left. From the jambs alone the sighting takes the heading as it is, and 0.8 m on by
+// the odometry the pose it carries is off across the door by the heading's 0.11 m. With
+// door_sighting_heading the wall beside the door turns it back first; a nearer scan that sees
+// no wall keeps the held sighting's heading.
+TEST(DoorSighting, TurnsTheHeadingByTheWallBesideTheDoorAndKeepsItNearer) {
+  const OfficeWall wall;
+  const DoorPassage door = office_door();
+  const core::Pose2 truth{5.38, 4.6, core::kPi / 2.0};
+  const core::Pose2 believed{5.53, 4.6, core::kPi / 2.0 + core::degrees_to_radians(8.0)};
+  const core::Pose2 odometry{-2.0, 1.0, 0.3};
+  const core::Pose2 ahead{0.8, 0.0, 0.0};
+  const core::Pose2 truth_ahead = truth.compose(ahead);
+  const core::DepthScan scan = scan_of_door(truth, door.middle, 0.9, {0.0, 1.0}, 0.0, Beside::measured_wall);
+  const auto across_error_ahead = [&](DoorSighting& sighting) {
+    return std::abs(sighting.navigation_pose(believed, odometry.compose(ahead)).x - truth_ahead.x);
+  };
+
+  DoorSighting jambs_only(sighting_params());
+  jambs_only.observe(seen_at(scan, believed, odometry, 1.0), door, wall.grid.view());
+  ASSERT_TRUE(jambs_only.holding());
+  EXPECT_GT(across_error_ahead(jambs_only), 0.08);
+
+  ExploreParams params = sighting_params();
+  params.explore.door_sighting_heading = true;
+  DoorSighting sighting(params);
+  sighting.observe(seen_at(scan, believed, odometry, 1.0), door, wall.grid.view());
+  ASSERT_TRUE(sighting.holding());
+  EXPECT_EQ(sighting.counters().headings_corrected, 1U);
+  const core::Pose2 corrected = sighting.navigation_pose(believed, odometry);
+  EXPECT_NEAR(corrected.theta, truth.theta, core::degrees_to_radians(0.5));
+  EXPECT_NEAR(corrected.x, truth.x, 0.01);
+  EXPECT_NEAR(sighting.last_heading_correction(), core::degrees_to_radians(-8.0), core::degrees_to_radians(0.5));
+  EXPECT_LT(across_error_ahead(sighting), 0.02);
+
+  // 0.4 m on, the wall beside the door blank: the heading is the held sighting's.
+  const core::Pose2 nearer{0.4, 0.0, 0.0};
+  const core::DepthScan near_scan = scan_of_door(truth.compose(nearer), door.middle, 0.9);
+  sighting.observe(seen_at(near_scan, believed.compose(nearer), odometry.compose(nearer), 2.0), door, wall.grid.view());
+  EXPECT_EQ(sighting.counters().sightings, 2U);
+  EXPECT_EQ(sighting.counters().headings_carried, 1U);
+  EXPECT_EQ(sighting.counters().heading_unmeasured, 0U);
+  const core::Pose2 kept = sighting.navigation_pose(believed, odometry.compose(nearer));
+  EXPECT_NEAR(kept.theta, truth.theta, core::degrees_to_radians(0.5));
+  EXPECT_NEAR(kept.x, truth.x, 0.01);
+
+  // A fresh sighting from there has no heading to keep: the estimate's is used, and counted.
+  DoorSighting fresh(params);
+  fresh.observe(seen_at(near_scan, believed.compose(nearer), odometry.compose(nearer), 2.0), door, wall.grid.view());
+  EXPECT_EQ(fresh.counters().heading_unmeasured, fresh.counters().sightings);
+}
+
 // A sighting is of one door: when the plan passes another one next, it is dropped; a scan seen
 // before is not looked at again.
 TEST(DoorSighting, DropsTheSightingForAnotherDoorAndLooksAtEachScanOnce) {
@@ -306,6 +358,8 @@ struct DoorDrive {
   double past_m = 0.0;
   // What the scans see beside the door.
   Beside beside = Beside::blank_wall;
+  // The estimate's heading is off by this too: its frame turned about the start.
+  double heading_error_rad = 0.0;
 };
 
 // Least distance between the disc at `robot` and a jamb of `drive`'s door (a point at wall
@@ -334,10 +388,15 @@ Passage drive_through_door(Explorer& explorer, const DoorDrive& drive, core::Pos
   Passage passage;
   core::Pose2 last_scan_pose = truth;
   const auto past_m = [&] { return (truth.translation() - drive.middle).dot(drive.along); };
+  // The estimate's frame: at the start `error` off, turned by the heading's error about it.
+  const Eigen::Vector2d start = truth.translation();
+  const Eigen::Vector2d shift =
+      start + drive.error - Eigen::Rotation2Dd(drive.heading_error_rad) * start;
+  const core::Pose2 estimate_frame{shift.x(), shift.y(), drive.heading_error_rad};
   for (double time_s = 0.0; time_s < 200.0 && past_m() < drive.past_m; time_s += 0.05) {
     ExploreInput input;
     input.time_s = time_s;
-    input.pose = core::Pose2{truth.x + drive.error.x(), truth.y + drive.error.y(), truth.theta};
+    input.pose = estimate_frame.compose(truth);
     input.odometry = truth;
     input.grid = drive.grid.view();
     const bool moved = (truth.translation() - last_scan_pose.translation()).norm() >= 0.07 ||
@@ -382,6 +441,28 @@ double least_clearance_through_offset_door(double sighting_range_m) {
   return passage.clearance_m;
 }
 
+// As least_clearance_through_offset_door, with the estimate's heading 8 degrees off from 1.85 m
+// before the door (its position right there), the wall beside the door measured in the scans.
+// The recent obstacle layer is off: the wall's points, placed from the turned estimate before
+// any plan (a sighting needs one), would shut the door in the planning grid from the start.
+double least_clearance_through_turned_door(double sighting_range_m, bool correct_heading) {
+  OffsetDoorScene scene;
+  ExploreParams params = closed_loop_params(100, 60);
+  params.explore.recent_obstacle_s = 0.0;
+  params.explore.door_sighting_range_m = sighting_range_m;
+  params.explore.door_sighting_heading = correct_heading;
+  Explorer explorer(params);
+  DoorDrive drive{scene.grid, {3.05, 3.05}, {1.0, 0.0}, {0.0, 0.0}, 0.95};
+  drive.beside = Beside::measured_wall;
+  drive.heading_error_rad = core::degrees_to_radians(8.0);
+  const Passage passage = drive_through_door(explorer, drive, core::Pose2{1.2, 3.05, 0.0}, params.robot_radius_m);
+  EXPECT_TRUE(passage.through) << "not through the door";
+  if (correct_heading) {
+    EXPECT_GT(explorer.door_sighting().counters().headings_corrected, 0U);
+  }
+  return passage.clearance_m;
+}
+
 // With the estimate 0.12 m off across a 0.9 m door, the robot centred on the door in its belief
 // touches the jamb; sighting the door puts it back in the middle.
 TEST(Explorer, ThroughADoorWithThePoseOffAcrossItTheSightingKeepsTheRobotClear) {
@@ -414,6 +495,20 @@ double least_clearance_through_offset_door_by_layer(double layer_gap_reach_m, do
 // With the estimate 0.08-0.16 m off across the door, the plan on the grid and the layer's cells
 // leaves the robot as little as 0.03 m from a jamb; steering at the middle of the gap between
 // the posts the layer kept, judged by the odometry alone, it keeps near the 0.1 m there is.
+// With the estimate's heading 8 degrees off, the jambs' bearings alone put the robot right only
+// where the scan was taken; the odometry carries the heading's error on across the door.
+// Turning the heading by the wall beside the door keeps the robot on the door's middle.
+TEST(Explorer, ThroughADoorWithTheHeadingOffTheWallBesideItKeepsTheRobotClear) {
+  const double blind = least_clearance_through_turned_door(0.0, false);
+  const double jambs_only = least_clearance_through_turned_door(2.0, false);
+  const double turned = least_clearance_through_turned_door(2.0, true);
+  std::printf("least jamb clearance with the heading 8 degrees off: %.3f m, door sighting %.3f m, with the heading %.3f m\n",
+              blind, jambs_only, turned);
+  EXPECT_LT(blind, 0.0);
+  EXPECT_GT(turned, 0.07);
+  EXPECT_GT(turned, jambs_only);
+}
+
 TEST(Explorer, ThroughADoorWithThePoseOffAcrossItTheLayersGapKeepsTheRobotClear) {
   double least_blind = 1e9;
   for (const double error_m : {0.08, 0.10, 0.12, 0.14, 0.16}) {

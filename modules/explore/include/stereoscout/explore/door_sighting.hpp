@@ -31,6 +31,16 @@
 // pose a sighting leaves is carried by the odometry through the last metre (docs/results.md,
 // "The door sighting judged in the robot's frame").
 //
+// With explore.door_sighting_heading the scan's heading is corrected first: the wall beside
+// the door, seen in the scan and held in the grid, is one line, and the angle between the two
+// is how far the pose's heading was off against the map. The offset across the door is then
+// measured from the corrected heading. From one scan the jambs' bearings alone cannot tell a
+// heading error from an offset across the door: both shift the jambs' bearings alike, and
+// driving straight at the door keeps them so (only where the robot's heading line meets the
+// door's line is seen). At the office's traced jamb contacts the heading was 8-11 degrees off
+// (docs/results.md), 0.14-0.19 m across the way over the last metre the odometry carries the
+// pose.
+//
 // Fixed-size state; observe() and navigation_pose() allocate nothing.
 
 #include <cstdint>
@@ -54,6 +64,12 @@ struct DoorSightingCounters {
   std::uint64_t width_disagrees = 0;    // the gap's width far from the grid's
   std::uint64_t offset_too_large = 0;
   std::uint64_t doors_sighted = 0;      // sightings of a door no sighting was held for
+  // With door_sighting_heading, of the sightings: heading corrected from the wall's line, taken
+  // from a held sighting of the door whose heading was (carried by the odometry), or neither
+  // (no line fitted in the scan or in the grid, or their angles too far apart).
+  std::uint64_t headings_corrected = 0;
+  std::uint64_t headings_carried = 0;
+  std::uint64_t heading_unmeasured = 0;
 };
 
 // What one scan saw of a door: its jambs on the door's line, in the map frame of the scan's
@@ -102,6 +118,34 @@ class DoorSighting {
   static constexpr double kWallOnLine_m = 0.15;
   static constexpr double kWallBeside_m = 0.2;
   static constexpr int kWallOffLineShare = 4;
+  // The wall's line for the heading (door_sighting_heading). The grid's: its occupied cells
+  // from the jamb outward to kHeadingWallReach_m across from the door's middle, within
+  // kHeadingBand_m of the door's line (a heading 15 degrees off moves a point 1.5 m out by
+  // 0.4 m), fitted by least squares, then twice again to those within
+  // max(kHeadingFitTolerance_m, kHeadingCellTolerance cells) of the last fit (at least
+  // kHeadingMinCells, spread kHeadingMinSpan_m along it). The scan's: of its points in the
+  // same place, turned about the robot by each kHeadingSearchStep_deg up to
+  // kMaxHeadingError_deg either way, the most that fall within a band two
+  // kHeadingFitTolerance_m wide along the grid's line and within kHeadingLineGap_m of it (at
+  // least kHeadingMinColumns, spread kHeadingMinSpan_m); the line through them, fitted by
+  // least squares. Points seen through the door into the room beyond, or of a chair before
+  // the wall, lie off that band: a plain fit through the scan's points took them in from
+  // 1.0 m aslant, 0.2 m past the wall's line.
+  static constexpr double kHeadingWallReach_m = 1.5;
+  static constexpr double kHeadingBand_m = 0.5;
+  static constexpr double kHeadingFitTolerance_m = 0.05;
+  // The grid's cell centres stand up to half a cell off a wall's line that runs aslant.
+  static constexpr double kHeadingCellTolerance = 0.6;
+  static constexpr int kHeadingMinColumns = 30;
+  static constexpr int kHeadingMinCells = 6;
+  // Nearer than about 1.5 m the scan sees 0.2-0.4 m of the wall beside a jamb.
+  static constexpr double kHeadingMinSpan_m = 0.4;
+  static constexpr double kMaxHeadingError_deg = 20.0;
+  static constexpr double kHeadingSearchStep_deg = 0.25;
+  // The scan's wall may lie this far from the grid's along the door's axis (the pose's error
+  // along it, and the grid's cells: their centres up to half a cell behind the wall's face).
+  static constexpr double kHeadingLineGap_m = 0.15;
+  static constexpr int kHeadingOffsetBins = static_cast<int>(2.0 * kHeadingLineGap_m / kHeadingFitTolerance_m + 0.5);
 
   explicit DoorSighting(const ExploreParams& params);
 
@@ -127,6 +171,14 @@ class DoorSighting {
   // The last sighting's offset across the door (map frame, added to the scan's pose), and its
   // door.
   Eigen::Vector2d last_offset() const { return offset_; }
+  // The last sighting's heading correction (radians, added to the scan's heading; 0 without
+  // door_sighting_heading or when it was not measured).
+  double last_heading_correction() const { return heading_correction_rad_; }
+  // The angle (radians, the map frame) by which the wall beside `door` in `scan` (taken at
+  // `pose`) must turn to lie along the wall beside it in `grid`; false when either line is
+  // not measured or they lie more than kMaxHeadingError_deg apart.
+  static bool heading_error(const core::DepthScan& scan, const core::Pose2& pose, const DoorPassage& door,
+                            const GridView& grid, double& correction_rad);
   const DoorPassage& door() const { return door_; }
   const DoorSightingCounters& counters() const { return counters_; }
 
@@ -136,6 +188,25 @@ class DoorSighting {
   bool measure(const core::DepthScan& scan, const core::Pose2& pose, double pan_rad, const DoorPassage& door,
                DoorGap& gap);
   void release();
+  // Where a sighting's heading comes from (door_sighting_heading).
+  enum class HeadingSource { none, wall, held, unmeasured };
+  // The scan's pose `pose` (seen.pose on entry) with its heading corrected, and from where.
+  HeadingSource scan_heading(const SeenObstacles& seen, const DoorPassage& door, const GridView& grid,
+                             core::Pose2& pose) const;
+  void count_heading(HeadingSource heading);
+  // The line through the grid's wall beside `door` (relative to its middle); false when
+  // there is none to trust.
+  static bool grid_wall_line(const DoorPassage& door, const GridView& grid, double& angle_rad,
+                             Eigen::Vector2d& through);
+  // `visit` for each of the scan's points beside `door` (relative to its middle).
+  template <typename Visit>
+  static void for_each_scan_point(const core::DepthScan& scan, const core::Pose2& pose, const DoorPassage& door,
+                                  Visit visit);
+  struct HeadingSearch {
+    int on_line = 0;
+    double turn_rad = 0.0;
+    double offset_m = 0.0;  // the band's middle from the grid's line
+  };
   static bool touches_image_edge(int first, int last, int columns);
   // Whether `column` of `scan` (taken at `pose`) saw past the door's line; its point in `point`.
   static bool sees_past(const core::DepthScan& scan, const core::Pose2& pose, const DoorPassage& door, int column,
@@ -146,13 +217,16 @@ class DoorSighting {
   double range_m_ = 0.0;
   double max_offset_m_ = 0.0;
   bool wall_from_scan_ = false;
+  bool correct_heading_ = false;
   double baseline_m_ = 0.0;
   double last_scan_time_s_ = -1.0;
   bool held_ = false;
+  bool heading_held_ = false;    // the held sighting's heading was corrected (wall or held)
   DoorPassage door_;             // the door the held sighting is of
   core::Pose2 sighted_pose_;     // the scan's pose, corrected
   core::Pose2 sighted_odometry_; // the odometry at the scan
   Eigen::Vector2d offset_ = Eigen::Vector2d::Zero();
+  double heading_correction_rad_ = 0.0;
   DoorSightingCounters counters_;
 };
 

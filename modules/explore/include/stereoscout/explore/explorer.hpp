@@ -227,8 +227,8 @@ class Explorer {
   DoorStandoff standoff_;
   ExploreInput navigation_input_;
   // The latest scan's points were placed with the estimate's pose: moved by the sighting's
-  // correction now (zero without one), they lie where the navigation pose puts them.
-  Eigen::Vector2d seen_shift_ = Eigen::Vector2d::Zero();
+  // correction now (none without one), they lie where the navigation pose puts them.
+  core::Pose2 seen_correction_;
   Plan plan_;
   Goal goal_;
   ExploreCounters counters_;
