@@ -296,6 +296,15 @@ bool DoorSighting::measure(const core::DepthScan& scan, const core::Pose2& pose,
   return false;
 }
 
+template <typename Visit>
+void DoorSighting::for_each_scan_point(const core::DepthScan& scan, const core::Pose2& pose, const DoorPassage& door,
+                                       Visit visit) {
+  Eigen::Vector2d point;
+  for (int column = 0; column < static_cast<int>(scan.columns.size()); ++column) {
+    if (measured_point(scan, pose, column, point) && beside_door(point - door.middle, door)) visit(point - door.middle);
+  }
+}
+
 bool DoorSighting::heading_error(const core::DepthScan& scan, const core::Pose2& pose, const DoorPassage& door,
                                  const GridView& grid, double& correction_rad) {
   double grid_angle = 0.0;
@@ -367,15 +376,6 @@ bool DoorSighting::grid_wall_line(const DoorPassage& door, const GridView& grid,
   };
   return fit_wall_line(grid_cells, std::max(kHeadingFitTolerance_m, kHeadingCellTolerance * grid.resolution_m),
                        kHeadingMinCells, angle_rad, through);
-}
-
-template <typename Visit>
-void DoorSighting::for_each_scan_point(const core::DepthScan& scan, const core::Pose2& pose, const DoorPassage& door,
-                                       Visit visit) {
-  Eigen::Vector2d point;
-  for (int column = 0; column < static_cast<int>(scan.columns.size()); ++column) {
-    if (measured_point(scan, pose, column, point) && beside_door(point - door.middle, door)) visit(point - door.middle);
-  }
 }
 
 bool DoorSighting::in_a_wall(const DoorPassage& door, const GridView& grid) {
