@@ -299,9 +299,16 @@ bool DoorSighting::measure(const core::DepthScan& scan, const core::Pose2& pose,
 template <typename Visit>
 void DoorSighting::for_each_scan_point(const core::DepthScan& scan, const core::Pose2& pose, const DoorPassage& door,
                                        Visit visit) {
-  Eigen::Vector2d point;
-  for (int column = 0; column < static_cast<int>(scan.columns.size()); ++column) {
-    if (measured_point(scan, pose, column, point) && beside_door(point - door.middle, door)) visit(point - door.middle);
+  // The pose's sine and cosine once (as measured_point() places a column): the heading's
+  // search walks the scan 161 times.
+  const double c = std::cos(pose.theta);
+  const double s = std::sin(pose.theta);
+  for (const core::DepthScanColumn& column : scan.columns) {
+    if (column.kind == core::DepthScanColumn::Kind::invalid) continue;
+    const double x = column.x_robot_m;
+    const double y = column.y_robot_m;
+    const Eigen::Vector2d point = Eigen::Vector2d(pose.x + c * x - s * y, pose.y + s * x + c * y) - door.middle;
+    if (beside_door(point, door)) visit(point);
   }
 }
 
