@@ -319,6 +319,7 @@ void write_counters(report::JsonWriter& json, const stack::Stack& stack) {
       .unsigned_integer("door_headings_corrected", d.headings_corrected)
       .unsigned_integer("door_headings_carried", d.headings_carried)
       .unsigned_integer("door_heading_unmeasured", d.heading_unmeasured)
+      .unsigned_integer("door_heading_jumps", d.heading_jumps)
       .unsigned_integer("door_standoff_doors", o.doors)
       .unsigned_integer("door_standoffs", o.stood_off)
       .unsigned_integer("door_standoff_sighted", o.sighted)

@@ -155,16 +155,23 @@ void DoorSighting::release() {
 
 // The heading from the wall beside the door; else, while a sighting of this door whose heading
 // was corrected is held, the heading it carries by the odometry (nearer than about 1.1 m the
-// matcher measures no wall in the image's outer band); else the estimate's.
+// matcher measures no wall in the image's outer band, and a wall's heading that jumps from it
+// is not the wall's); else the estimate's.
 DoorSighting::HeadingSource DoorSighting::scan_heading(const SeenObstacles& seen, const DoorPassage& door,
-                                                       const GridView& grid, core::Pose2& pose) const {
+                                                       const GridView& grid, core::Pose2& pose) {
+  const bool carried = held_ && heading_held_ && same_door(door, door_);
+  const double carried_rad = carried ? sighted_pose_.compose(sighted_odometry_.between(seen.odometry)).theta : 0.0;
   double correction_rad = 0.0;
   if (heading_error(*seen.scan, seen.pose, door, grid, correction_rad)) {
-    pose.theta = core::wrap_angle(seen.pose.theta + correction_rad);
-    return HeadingSource::wall;
+    const double measured_rad = core::wrap_angle(seen.pose.theta + correction_rad);
+    if (!carried || std::abs(core::wrap_angle(measured_rad - carried_rad)) <= core::degrees_to_radians(kMaxHeadingJump_deg)) {
+      pose.theta = measured_rad;
+      return HeadingSource::wall;
+    }
+    ++counters_.heading_jumps;
   }
-  if (held_ && heading_held_ && same_door(door, door_)) {
-    pose.theta = sighted_pose_.compose(sighted_odometry_.between(seen.odometry)).theta;
+  if (carried) {
+    pose.theta = carried_rad;
     return HeadingSource::held;
   }
   return HeadingSource::unmeasured;

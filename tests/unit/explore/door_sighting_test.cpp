@@ -263,7 +263,7 @@ TEST(DoorSighting, WithTheWallFromTheScanSightsADoorTheGridHoldsNoWallBeside) {
 // to its left. From the jambs alone the sighting takes the heading as it is, and 0.8 m on by
 // the odometry the pose it carries is off across the door by the heading's 0.11 m. With
 // door_sighting_heading the wall beside the door turns it back first; a nearer scan that sees
-// no wall keeps the held sighting's heading.
+// no wall keeps the held sighting's heading, and so does one whose wall's heading jumps from it.
 TEST(DoorSighting, TurnsTheHeadingByTheWallBesideTheDoorAndKeepsItNearer) {
   const OfficeWall wall;
   const DoorPassage door = office_door();
@@ -304,6 +304,17 @@ TEST(DoorSighting, TurnsTheHeadingByTheWallBesideTheDoorAndKeepsItNearer) {
   const core::Pose2 kept = sighting.navigation_pose(believed, odometry.compose(nearer));
   EXPECT_NEAR(kept.theta, truth.theta, core::degrees_to_radians(0.5));
   EXPECT_NEAR(kept.x, truth.x, 0.01);
+
+  // A scan whose wall lies 12 degrees from the held heading (the odometry saw no turn): the
+  // held heading is kept.
+  const core::Pose2 twisted = truth.compose(core::Pose2{0.2, 0.0, core::degrees_to_radians(12.0)});
+  const core::DepthScan twisted_scan = scan_of_door(twisted, door.middle, 0.9, {0.0, 1.0}, 0.0, Beside::measured_wall);
+  const core::Pose2 on{0.2, 0.0, 0.0};
+  sighting.observe(seen_at(twisted_scan, believed.compose(on), odometry.compose(on), 3.0), door, wall.grid.view());
+  EXPECT_EQ(sighting.counters().heading_jumps, 1U);
+  EXPECT_EQ(sighting.counters().headings_corrected, 1U);
+  EXPECT_NEAR(sighting.navigation_pose(believed, odometry.compose(on)).theta, truth.theta,
+              core::degrees_to_radians(0.5));
 
   // A fresh sighting from there has no heading to keep: the estimate's is used, and counted.
   DoorSighting fresh(params);

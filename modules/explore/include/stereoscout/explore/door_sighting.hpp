@@ -70,6 +70,9 @@ struct DoorSightingCounters {
   std::uint64_t headings_corrected = 0;
   std::uint64_t headings_carried = 0;
   std::uint64_t heading_unmeasured = 0;
+  // Scans whose wall gave a heading more than kMaxHeadingJump_deg from the held sighting's
+  // (the held one's is kept).
+  std::uint64_t heading_jumps = 0;
 };
 
 // What one scan saw of a door: its jambs on the door's line, in the map frame of the scan's
@@ -142,6 +145,12 @@ class DoorSighting {
   static constexpr double kHeadingMinSpan_m = 0.4;
   static constexpr double kMaxHeadingError_deg = 20.0;
   static constexpr double kHeadingSearchStep_deg = 0.25;
+  // A held sighting's heading, carried by the odometry, and a later scan's wall's of the same
+  // door lie within this of each other; beyond it the wall's is not trusted. Successive
+  // sightings of one door agreed to 0.5-2 degrees in the office, and one 12 degrees off them
+  // (a line through points seen through the door, it seems) steered the robot into the jamb
+  // (office seed 3 at N3, docs/results.md).
+  static constexpr double kMaxHeadingJump_deg = 3.0;
   // The scan's wall may lie this far from the grid's along the door's axis (the pose's error
   // along it, and the grid's cells: their centres up to half a cell behind the wall's face).
   static constexpr double kHeadingLineGap_m = 0.15;
@@ -192,7 +201,7 @@ class DoorSighting {
   enum class HeadingSource { none, wall, held, unmeasured };
   // The scan's pose `pose` (seen.pose on entry) with its heading corrected, and from where.
   HeadingSource scan_heading(const SeenObstacles& seen, const DoorPassage& door, const GridView& grid,
-                             core::Pose2& pose) const;
+                             core::Pose2& pose);
   void count_heading(HeadingSource heading);
   // The line through the grid's wall beside `door` (relative to its middle); false when
   // there is none to trust.
