@@ -6,6 +6,10 @@
 
 namespace stereoscout::core {
 
+double wrap_centred(double angle, double period) { return angle - period * std::floor(angle / period + 0.5); }
+
+double principal_axis_angle(double sxx, double sxy, double syy) { return 0.5 * std::atan2(2.0 * sxy, sxx - syy); }
+
 double wrap_angle(double radians) {
   if (!std::isfinite(radians)) {
     return radians;

@@ -44,7 +44,7 @@ class LineFit {
     const double cxx = sxx_ / count_ - centroid.x() * centroid.x();
     const double cxy = sxy_ / count_ - centroid.x() * centroid.y();
     const double cyy = syy_ / count_ - centroid.y() * centroid.y();
-    const double angle = 0.5 * std::atan2(2.0 * cxy, cxx - cyy);
+    const double angle = core::principal_axis_angle(cxx, cxy, cyy);
     direction = {std::cos(angle), std::sin(angle)};
     return true;
   }
@@ -307,7 +307,7 @@ template <typename Visit>
 void DoorSighting::for_each_scan_point(const core::DepthScan& scan, const core::Pose2& pose, const DoorPassage& door,
                                        Visit visit) {
   // The pose's sine and cosine once (as measured_point() places a column): the heading's
-  // search walks the scan 161 times.
+  // search walks the scan once for each turn it tries.
   const double c = std::cos(pose.theta);
   const double s = std::sin(pose.theta);
   for (const core::DepthScanColumn& column : scan.columns) {
@@ -367,9 +367,7 @@ bool DoorSighting::heading_error(const core::DepthScan& scan, const core::Pose2&
   Eigen::Vector2d direction;
   if (highest - lowest < kHeadingMinSpan_m || !fit.line(centroid, direction)) return false;
   // Lines have no direction: the turn lies within a quarter turn either way.
-  double turn = core::wrap_angle(grid_angle - std::atan2(direction.y(), direction.x()));
-  if (turn > 0.5 * core::kPi) turn -= core::kPi;
-  if (turn < -0.5 * core::kPi) turn += core::kPi;
+  const double turn = core::wrap_centred(grid_angle - std::atan2(direction.y(), direction.x()), core::kPi);
   if (std::abs(turn) > core::degrees_to_radians(kMaxHeadingError_deg)) return false;
   correction_rad = turn;
   return true;

@@ -9,9 +9,6 @@ namespace {
 
 constexpr double kQuarterTurn = 0.5 * core::kPi;
 
-// `angle` brought into [-period/2, period/2).
-double wrap_centred(double angle, double period) { return angle - period * std::floor(angle / period + 0.5); }
-
 }  // namespace
 
 void ManhattanFrame::reset() {
@@ -32,7 +29,7 @@ void ManhattanFrame::learn(double map_direction_rad) {
   const double agreement = std::hypot(sum_cos_, sum_sin_) / static_cast<double>(learnt_);
   if (agreement >= kMinAgreement) {
     fixed_ = true;
-    axis_rad_ = wrap_centred(0.25 * std::atan2(sum_sin_, sum_cos_), kQuarterTurn);
+    axis_rad_ = core::wrap_centred(0.25 * std::atan2(sum_sin_, sum_cos_), kQuarterTurn);
     return;
   }
   ++restarts_;
@@ -42,7 +39,7 @@ void ManhattanFrame::learn(double map_direction_rad) {
 }
 
 double ManhattanFrame::offset(double map_direction_rad) const {
-  return wrap_centred(map_direction_rad - axis_rad_, kQuarterTurn);
+  return core::wrap_centred(map_direction_rad - axis_rad_, kQuarterTurn);
 }
 
 }  // namespace stereoscout::slam

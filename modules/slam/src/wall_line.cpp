@@ -61,7 +61,7 @@ bool fit_piece(const core::DepthScan& scan, const Piece& piece, const WallLinePa
     const Eigen::Vector2d d = point_of(scan.columns[i]) - mean;
     scatter += d * d.transpose();
   }
-  const double direction = 0.5 * std::atan2(2.0 * scatter(0, 1), scatter(0, 0) - scatter(1, 1));
+  const double direction = core::principal_axis_angle(scatter(0, 0), scatter(0, 1), scatter(1, 1));
   const Eigen::Vector2d along_line(std::cos(direction), std::sin(direction));
   const Eigen::Vector2d across_line(-along_line.y(), along_line.x());
   double along_min = 0.0;

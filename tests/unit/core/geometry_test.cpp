@@ -19,6 +19,29 @@ TEST(WrapAngle, MapsIntoHalfOpenInterval) {
   EXPECT_TRUE(std::isnan(wrap_angle(std::nan(""))));
 }
 
+// With period pi: the turn between two lines, which have no direction.
+TEST(WrapCentred, BringsTheTurnBetweenTwoLinesWithinAQuarterTurn) {
+  EXPECT_NEAR(wrap_centred(0.1, kPi), 0.1, 1e-12);
+  EXPECT_NEAR(wrap_centred(kPi - 0.1, kPi), -0.1, 1e-12);
+  EXPECT_NEAR(wrap_centred(-kPi + 0.1, kPi), 0.1, 1e-12);
+  EXPECT_NEAR(wrap_centred(0.5 * kPi, kPi), -0.5 * kPi, 1e-12);  // half-open: [-period/2, period/2)
+  EXPECT_NEAR(wrap_centred(0.3 + 2.0 * kPi, 0.5 * kPi), 0.3, 1e-12);
+}
+
+// Points along a line at 30 degrees, spread a little across it: the axis is the line's.
+TEST(PrincipalAxisAngle, IsTheDirectionOfTheLineThePointsLieAlong) {
+  const Eigen::Vector2d along(std::cos(degrees_to_radians(30.0)), std::sin(degrees_to_radians(30.0)));
+  const Eigen::Vector2d across(-along.y(), along.x());
+  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
+  for (int i = -10; i <= 10; ++i) {
+    const Eigen::Vector2d point = 0.1 * i * along + (i % 2 == 0 ? 0.01 : -0.01) * across;
+    scatter += point * point.transpose();
+  }
+  EXPECT_NEAR(principal_axis_angle(scatter(0, 0), scatter(0, 1), scatter(1, 1)), degrees_to_radians(30.0), 1e-3);
+  // A vertical line: the axis at a quarter turn (either sign is the same line).
+  EXPECT_NEAR(std::abs(principal_axis_angle(0.0, 0.0, 1.0)), 0.5 * kPi, 1e-12);
+}
+
 TEST(Pose2, ComposeThenInverseIsIdentity) {
   const Pose2 a{1.0, 2.0, 0.5};
   const Pose2 identity = a.compose(a.inverse());

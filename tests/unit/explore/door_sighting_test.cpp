@@ -319,7 +319,8 @@ TEST(DoorSighting, TurnsTheHeadingByTheWallBesideTheDoorAndKeepsItNearer) {
   // A fresh sighting from there has no heading to keep: the estimate's is used, and counted.
   DoorSighting fresh(params);
   fresh.observe(seen_at(near_scan, believed.compose(nearer), odometry.compose(nearer), 2.0), door, wall.grid.view());
-  EXPECT_EQ(fresh.counters().heading_unmeasured, fresh.counters().sightings);
+  EXPECT_EQ(fresh.counters().sightings, 1U);
+  EXPECT_EQ(fresh.counters().heading_unmeasured, 1U);
 }
 
 // A sighting is of one door: when the plan passes another one next, it is dropped; a scan seen

@@ -16,6 +16,11 @@ inline constexpr double kPi = 3.14159265358979323846;
 
 // Wraps an angle to (-pi, pi].
 double wrap_angle(double radians);
+// Brings `angle` into [-period/2, period/2): with period pi, the turn between two lines.
+double wrap_centred(double angle, double period);
+// The direction (radians, in [-pi/2, pi/2]) of the principal axis of 2-D points whose second
+// moments about their mean are sxx, sxy, syy (any common scale): the total-least-squares line.
+double principal_axis_angle(double sxx, double sxy, double syy);
 constexpr double degrees_to_radians(double degrees) { return degrees * (kPi / 180.0); }
 constexpr double radians_to_degrees(double radians) { return radians * (180.0 / kPi); }
 
