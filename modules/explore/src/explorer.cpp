@@ -622,6 +622,7 @@ void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
     }
     return;
   }
+  if (params_.explore.gaze_ahead_m > 0.0 && params_.has_pan_unit) pan_target_rad_ = gaze_pan_rad(input.pose);
   const double distance = remaining_path_m(position_of(input.pose));
   if (distance < best_goal_distance_m_ - kProgressStep_m) {
     best_goal_distance_m_ = distance;
@@ -682,6 +683,18 @@ void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
     return;
   }
   output.drive = command;
+}
+
+// A side door seen from the corridor only as the robot turns into it stands too near the camera
+// for its jambs to be measured (the dense matcher starts at 0.63 m): looking where the plan
+// goes, the camera sees it from before the turn. Within gaze_max_pan_deg of the heading, the
+// scan guard still sees what lies straight ahead.
+double Explorer::gaze_pan_rad(const core::Pose2& pose) const {
+  const Eigen::Vector2d robot = position_of(pose);
+  const Eigen::Vector2d to_point = follower_.point_ahead(plan_, robot, params_.explore.gaze_ahead_m) - robot;
+  if (to_point.squaredNorm() < kAheadCheck_m * kAheadCheck_m) return 0.0;  // at the plan's end: no direction
+  const double limit = core::degrees_to_radians(params_.explore.gaze_max_pan_deg);
+  return std::clamp(core::wrap_angle(std::atan2(to_point.y(), to_point.x()) - pose.theta), -limit, limit);
 }
 
 // The follower steers by the map pose and the plan, both from the estimate's grid; a door's

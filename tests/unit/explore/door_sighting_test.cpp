@@ -391,13 +391,19 @@ struct Passage {
   bool through = false;
 };
 
+// The pan unit's rate (camera.pan_rate_deg_s).
+constexpr double kPanRate_deg_s = 30.0;
+
 // Drives the kinematic robot from `truth` by the explorer's commands at 20 Hz until it is
 // through the door (or 200 s pass), with an update, and a scan of the door, each 0.07 m or
-// degree of motion, as the stack makes them.
+// degree of motion, as the stack makes them; the pan unit turns the camera where the explorer
+// wants it at kPanRate_deg_s.
 Passage drive_through_door(Explorer& explorer, const DoorDrive& drive, core::Pose2 truth, double radius_m) {
   core::DepthScan scan;
   SeenObstacles seen;
   Passage passage;
+  double pan_rad = 0.0;
+  const double pan_step_rad = core::degrees_to_radians(kPanRate_deg_s) * 0.05;
   core::Pose2 last_scan_pose = truth;
   const auto past_m = [&] { return (truth.translation() - drive.middle).dot(drive.along); };
   // The estimate's frame: at the start `error` off, turned by the heading's error about it.
@@ -410,17 +416,21 @@ Passage drive_through_door(Explorer& explorer, const DoorDrive& drive, core::Pos
     input.time_s = time_s;
     input.pose = estimate_frame.compose(truth);
     input.odometry = truth;
+    input.pan_rad = pan_rad;
     input.grid = drive.grid.view();
     const bool moved = (truth.translation() - last_scan_pose.translation()).norm() >= 0.07 ||
                        std::abs(core::wrap_angle(truth.theta - last_scan_pose.theta)) >= core::degrees_to_radians(1.0);
     input.grid_updated = time_s == 0.0 || moved;
     if (input.grid_updated) {
       last_scan_pose = truth;
-      scan = scan_of_door(truth, drive.middle, 0.9, drive.along, 0.0, drive.beside);
+      scan = scan_of_door(truth, drive.middle, 0.9, drive.along, pan_rad, drive.beside);
       seen = seen_at(scan, input.pose, truth, time_s);
+      seen.pan_rad = pan_rad;
     }
     input.seen = seen;
-    const core::DriveCommand command = explorer.step(input).drive;
+    const ExploreOutput output = explorer.step(input);
+    const core::DriveCommand command = output.drive;
+    pan_rad += std::clamp(output.pan_target_rad - pan_rad, -pan_step_rad, pan_step_rad);
     truth.x += command.linear_mps * 0.05 * std::cos(truth.theta);
     truth.y += command.linear_mps * 0.05 * std::sin(truth.theta);
     truth.theta = core::wrap_angle(truth.theta + command.angular_rad_s * 0.05);
@@ -557,9 +567,10 @@ struct SideDoorPassage {
   std::uint64_t sightings = 0;
 };
 
-SideDoorPassage through_side_door(double standoff_m) {
+SideDoorPassage through_side_door(double standoff_m, double gaze_ahead_m = 0.0) {
   SideDoorScene scene;
   ExploreParams params = closed_loop_params(100, 60);
+  params.explore.gaze_ahead_m = gaze_ahead_m;
   params.explore.door_sighting_range_m = 1.4;
   params.explore.door_axis_before_m = 1.4;
   params.explore.door_axis_all_gaps = true;
@@ -590,6 +601,23 @@ TEST(Explorer, StandingOffBeforeASideDoorLetsTheSightingKeepTheRobotClear) {
   EXPECT_GT(square.sightings, 0U);
   EXPECT_GT(square.passage.clearance_m, 0.07);
   EXPECT_LT(oblique.passage.clearance_m, 0.0);
+}
+
+// Looking where the plan goes (explore.gaze_ahead_m), the camera sees the side door from the
+// corridor before the robot turns into it, near enough for a sighting and far enough for the
+// dense matcher, without standing off.
+TEST(Explorer, LookingAlongThePlanLetsTheSightingKeepTheRobotClearOfASideDoor) {
+  const SideDoorPassage ahead = through_side_door(0.0);
+  const SideDoorPassage gazing = through_side_door(0.0, 1.5);
+  std::printf("side door, pose 0.12 m off: least jamb clearance %.3f m with %llu sightings; looking along the plan "
+              "%.3f m with %llu\n",
+              ahead.passage.clearance_m, static_cast<unsigned long long>(ahead.sightings),
+              gazing.passage.clearance_m, static_cast<unsigned long long>(gazing.sightings));
+  EXPECT_TRUE(gazing.passage.through);
+  EXPECT_EQ(gazing.standoff.doors, 0U);
+  EXPECT_GT(gazing.sightings, 0U);
+  EXPECT_GT(gazing.passage.clearance_m, 0.07);
+  EXPECT_LT(ahead.passage.clearance_m, 0.0);
 }
 
 }  // namespace

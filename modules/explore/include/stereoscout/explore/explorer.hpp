@@ -29,6 +29,8 @@
 // door by where the latest scans saw its gap (door_sighting.hpp). With both and
 // door_standoff_m, it first looks at a door it has no sighting of square on, from a point on
 // its axis (door_standoff.hpp).
+// With gaze_ahead_m, the pan unit points the camera along the plan while it drives, at the
+// waypoint that far ahead, so that the door of a turn is in view before the turn.
 // If facing the plan's next waypoint would clear the way (pure pursuit cut a corner beside an
 // obstacle), it turns in place to face it instead. Otherwise, with pan_at_goal, it looks around
 // (a standing robot makes no observation update, so nothing would clear a person's trace)
@@ -171,6 +173,8 @@ class Explorer {
   void finish_look(const ExploreInput& input);
   void look_step(const ExploreInput& input, ExploreOutput& output);
   void drive_step(const ExploreInput& input, ExploreOutput& output);
+  // explore.gaze_ahead_m: the pan angle that points the camera at the plan's waypoint that far ahead.
+  double gaze_pan_rad(const core::Pose2& pose) const;
   void stop_and_look(const ExploreInput& input, ExploreOutput& output, double turn_rad_s);
   void hold_for_scan(const ExploreInput& input);
   void begin_back_off(const ExploreInput& input, ExploreOutput& output);

@@ -8,7 +8,8 @@
 // an obstacle's safety margin (Plan::narrow) up to the lookahead point, the lookahead shrinks
 // to explore.narrow_lookahead_m, so that the robot keeps to the path through a doorway. With
 // explore.door_axis_before_m it steers along the axis of the door it is passing instead
-// (door_axis.hpp).
+// (door_axis.hpp). With explore.gaze_ahead_m the explorer points the camera at the waypoint
+// that far ahead (point_ahead).
 
 #include <cstddef>
 
@@ -39,6 +40,11 @@ class PathFollower {
   void reset() { progress_ = 0; }
   FollowResult follow(const Plan& plan, const core::Pose2& pose, const DoorPassage& door = DoorPassage());
   std::size_t progress() const { return progress_; }
+  // The first waypoint from the nearest one (as the last follow() found it) on that lies at
+  // least `distance_m` from `position`; the last one when none does. `plan` must not be empty.
+  const Eigen::Vector2d& point_ahead(const Plan& plan, const Eigen::Vector2d& position, double distance_m) const {
+    return plan.waypoints[lookahead_point(plan, position, distance_m)];
+  }
 
  private:
   std::size_t lookahead_point(const Plan& plan, const Eigen::Vector2d& position, double lookahead_m) const;
