@@ -389,6 +389,7 @@ double jamb_clearance_m(const DoorDrive& drive, const Eigen::Vector2d& robot, do
 struct Passage {
   double clearance_m = 1e9;
   bool through = false;
+  double widest_pan_target_rad = 0.0;  // the largest turn of the camera off the heading asked for
 };
 
 // The pan unit's rate (camera.pan_rate_deg_s).
@@ -431,6 +432,9 @@ Passage drive_through_door(Explorer& explorer, const DoorDrive& drive, core::Pos
     const ExploreOutput output = explorer.step(input);
     const core::DriveCommand command = output.drive;
     pan_rad += std::clamp(output.pan_target_rad - pan_rad, -pan_step_rad, pan_step_rad);
+    if (std::abs(output.pan_target_rad) > std::abs(passage.widest_pan_target_rad)) {
+      passage.widest_pan_target_rad = output.pan_target_rad;
+    }
     truth.x += command.linear_mps * 0.05 * std::cos(truth.theta);
     truth.y += command.linear_mps * 0.05 * std::sin(truth.theta);
     truth.theta = core::wrap_angle(truth.theta + command.angular_rad_s * 0.05);
@@ -614,6 +618,10 @@ TEST(Explorer, LookingAlongThePlanLetsTheSightingKeepTheRobotClearOfASideDoor) {
               ahead.passage.clearance_m, static_cast<unsigned long long>(ahead.sightings),
               gazing.passage.clearance_m, static_cast<unsigned long long>(gazing.sightings));
   EXPECT_TRUE(gazing.passage.through);
+  // The door lies to the right (south) of the robot driving east: the camera turned clockwise,
+  // as far as gaze_max_pan_deg lets it; looking ahead, never.
+  EXPECT_NEAR(gazing.passage.widest_pan_target_rad, -core::degrees_to_radians(30.0), 1e-9);
+  EXPECT_EQ(ahead.passage.widest_pan_target_rad, 0.0);
   EXPECT_EQ(gazing.standoff.doors, 0U);
   EXPECT_GT(gazing.sightings, 0U);
   EXPECT_GT(gazing.passage.clearance_m, 0.07);
