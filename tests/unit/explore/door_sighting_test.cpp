@@ -397,8 +397,8 @@ constexpr double kPanRate_deg_s = 30.0;
 
 // Drives the kinematic robot from `truth` by the explorer's commands at 20 Hz until it is
 // through the door (or 200 s pass), with an update, and a scan of the door, each 0.07 m or
-// degree of motion, as the stack makes them; the pan unit turns the camera where the explorer
-// wants it at kPanRate_deg_s.
+// degree the camera turned (the robot or the pan unit), as the stack makes them; the pan unit
+// turns the camera where the explorer wants it at kPanRate_deg_s.
 Passage drive_through_door(Explorer& explorer, const DoorDrive& drive, core::Pose2 truth, double radius_m) {
   core::DepthScan scan;
   SeenObstacles seen;
@@ -406,6 +406,7 @@ Passage drive_through_door(Explorer& explorer, const DoorDrive& drive, core::Pos
   double pan_rad = 0.0;
   const double pan_step_rad = core::degrees_to_radians(kPanRate_deg_s) * 0.05;
   core::Pose2 last_scan_pose = truth;
+  double last_scan_pan_rad = 0.0;
   const auto past_m = [&] { return (truth.translation() - drive.middle).dot(drive.along); };
   // The estimate's frame: at the start `error` off, turned by the heading's error about it.
   const Eigen::Vector2d start = truth.translation();
@@ -420,10 +421,12 @@ Passage drive_through_door(Explorer& explorer, const DoorDrive& drive, core::Pos
     input.pan_rad = pan_rad;
     input.grid = drive.grid.view();
     const bool moved = (truth.translation() - last_scan_pose.translation()).norm() >= 0.07 ||
-                       std::abs(core::wrap_angle(truth.theta - last_scan_pose.theta)) >= core::degrees_to_radians(1.0);
+                       std::abs(core::wrap_angle(truth.theta + pan_rad - last_scan_pose.theta - last_scan_pan_rad)) >=
+                           core::degrees_to_radians(1.0);
     input.grid_updated = time_s == 0.0 || moved;
     if (input.grid_updated) {
       last_scan_pose = truth;
+      last_scan_pan_rad = pan_rad;
       scan = scan_of_door(truth, drive.middle, 0.9, drive.along, pan_rad, drive.beside);
       seen = seen_at(scan, input.pose, truth, time_s);
       seen.pan_rad = pan_rad;
