@@ -692,7 +692,9 @@ void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
 double Explorer::gaze_pan_rad(const core::Pose2& pose) const {
   const Eigen::Vector2d robot = position_of(pose);
   const Eigen::Vector2d to_point = follower_.point_ahead(plan_, robot, params_.explore.gaze_ahead_m) - robot;
-  if (to_point.squaredNorm() < kAheadCheck_m * kAheadCheck_m) return 0.0;  // at the plan's end: no direction
+  // A waypoint this near gives no direction (only with gaze_ahead_m below it: the goal is reached
+  // from goal_tolerance_m).
+  if (to_point.squaredNorm() < kAheadCheck_m * kAheadCheck_m) return 0.0;
   const double limit = core::degrees_to_radians(params_.explore.gaze_max_pan_deg);
   return std::clamp(core::wrap_angle(std::atan2(to_point.y(), to_point.x()) - pose.theta), -limit, limit);
 }

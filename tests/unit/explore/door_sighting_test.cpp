@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "stereoscout/core/config/camera.hpp"
 #include "stereoscout/explore/explorer.hpp"
 #include "test_grid.hpp"
 
@@ -392,19 +393,16 @@ struct Passage {
   double widest_pan_target_rad = 0.0;  // the largest turn of the camera off the heading asked for
 };
 
-// The pan unit's rate (camera.pan_rate_deg_s).
-constexpr double kPanRate_deg_s = 30.0;
-
 // Drives the kinematic robot from `truth` by the explorer's commands at 20 Hz until it is
 // through the door (or 200 s pass), with an update, and a scan of the door, each 0.07 m or
 // degree the camera turned (the robot or the pan unit), as the stack makes them; the pan unit
-// turns the camera where the explorer wants it at kPanRate_deg_s.
+// turns the camera where the explorer wants it at the default camera.pan_rate_deg_s.
 Passage drive_through_door(Explorer& explorer, const DoorDrive& drive, core::Pose2 truth, double radius_m) {
   core::DepthScan scan;
   SeenObstacles seen;
   Passage passage;
   double pan_rad = 0.0;
-  const double pan_step_rad = core::degrees_to_radians(kPanRate_deg_s) * 0.05;
+  const double pan_step_rad = core::degrees_to_radians(core::CameraConfig{}.pan_rate_deg_s) * 0.05;
   core::Pose2 last_scan_pose = truth;
   double last_scan_pan_rad = 0.0;
   const auto past_m = [&] { return (truth.translation() - drive.middle).dot(drive.along); };
