@@ -606,6 +606,9 @@ void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
   const FollowResult follow = follower_.follow(plan_, input.pose, door_axis_.passage());
   if (follow.reached) {
     plan_.clear();
+    // The gaze's last angle would otherwise stay where nothing asks for another (the end of the
+    // return); a look sets its own targets.
+    if (gazing()) pan_target_rad_ = 0.0;
     if (state_ == ExploreState::returning) {
       note(ExploreEventKind::returned, input);
       state_ = ExploreState::finished;
@@ -622,7 +625,7 @@ void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
     }
     return;
   }
-  if (params_.explore.gaze_ahead_m > 0.0 && params_.has_pan_unit) pan_target_rad_ = gaze_pan_rad(input.pose);
+  if (gazing()) pan_target_rad_ = gaze_pan_rad(input.pose);
   const double distance = remaining_path_m(position_of(input.pose));
   if (distance < best_goal_distance_m_ - kProgressStep_m) {
     best_goal_distance_m_ = distance;

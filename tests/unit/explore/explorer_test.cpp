@@ -1290,6 +1290,25 @@ TEST(Explorer, ReturnsToTheStartAfterTheTimeLimit) {
             ExploreState::finished);
 }
 
+// Looking along the plan turns the camera off the heading while driving; once the return ends
+// nothing asks for another pan target, so the camera must come back to the heading then.
+TEST(Explorer, TheCameraLooksAlongTheHeadingAgainWhenTheReturnEnds) {
+  Corridor scene;
+  ExploreParams params = test_params(100, 60);
+  params.explore.pan_at_goal = false;
+  params.explore.time_limit_s = 10.0;
+  params.explore.gaze_ahead_m = 1.5;
+  Explorer explorer(params);
+  explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.0, true));
+  const ExploreOutput returning = explorer.step(input_at(scene.grid.view(), 5.0, 3.0, 0.0, 10.0, false));
+  ASSERT_EQ(returning.state, ExploreState::returning);
+  // The start lies behind: the camera turns as far as it may towards the way back.
+  EXPECT_NEAR(std::abs(returning.pan_target_rad), core::degrees_to_radians(params.explore.gaze_max_pan_deg), 1e-9);
+  const ExploreOutput finished = explorer.step(input_at(scene.grid.view(), 1.52, 3.0, core::kPi, 200.0, false));
+  ASSERT_EQ(finished.state, ExploreState::finished);
+  EXPECT_EQ(finished.pan_target_rad, 0.0);
+}
+
 // Steps through a whole look with the pan unit, each quarter turn reached at once.
 ExploreOutput finish_a_look(Explorer& explorer, const GridView& grid, double x, double y, double time_s) {
   ExploreOutput output;

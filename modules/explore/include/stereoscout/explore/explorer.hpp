@@ -174,6 +174,7 @@ class Explorer {
   void look_step(const ExploreInput& input, ExploreOutput& output);
   void drive_step(const ExploreInput& input, ExploreOutput& output);
   // explore.gaze_ahead_m: the pan angle that points the camera at the plan's waypoint that far ahead.
+  bool gazing() const { return params_.explore.gaze_ahead_m > 0.0 && params_.has_pan_unit; }
   double gaze_pan_rad(const core::Pose2& pose) const;
   void stop_and_look(const ExploreInput& input, ExploreOutput& output, double turn_rad_s);
   void hold_for_scan(const ExploreInput& input);
