@@ -173,8 +173,9 @@ class Explorer {
   void finish_look(const ExploreInput& input);
   void look_step(const ExploreInput& input, ExploreOutput& output);
   void drive_step(const ExploreInput& input, ExploreOutput& output);
-  // explore.gaze_ahead_m: the pan angle that points the camera at the plan's waypoint that far ahead.
+  // Whether the camera looks along the plan while driving (explore.gaze_ahead_m, with a pan unit).
   bool gazing() const { return params_.explore.gaze_ahead_m > 0.0 && params_.has_pan_unit; }
+  // explore.gaze_ahead_m: the pan angle that points the camera at the plan's waypoint that far ahead.
   double gaze_pan_rad(const core::Pose2& pose) const;
   void stop_and_look(const ExploreInput& input, ExploreOutput& output, double turn_rad_s);
   void hold_for_scan(const ExploreInput& input);
