@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 namespace stereoscout::explore {
@@ -18,6 +19,48 @@ constexpr std::uint8_t kSizeUnmeasured = 0;
 constexpr std::uint8_t kSizeMeasuring = 1;
 constexpr std::uint8_t kSizeObject = 2;
 constexpr std::uint8_t kSizeLarger = 3;
+
+// A distance transform's site is its cell's coordinates packed in one word (x in the low 16
+// bits), so that distances need no division. "None" is a site far outside any grid of at most
+// kMaxSide cells a side (the config's limit): farther from every cell than any real site, so
+// the transform needs no test for it.
+constexpr int kMaxSide = 20000;
+constexpr std::int32_t kNoSite = 0x7fffffff;  // x 65535, y 32767
+std::int32_t pack_site(int x, int y) { return static_cast<std::int32_t>((y << 16) | x); }
+int site_x(std::int32_t site) { return site & 0xffff; }
+int site_y(std::int32_t site) { return site >> 16; }
+long site_distance2(std::int32_t site, int x, int y) {
+  const long dx = site_x(site) - x;
+  const long dy = site_y(site) - y;
+  return dx * dx + dy * dy;
+}
+
+// The first and last cell of a row that is not unknown (-1: none), skipping unknown cells
+// eight at a time (unknown is 0): most of the grid is unknown, and the window is found anew
+// at every rebuild.
+static_assert(static_cast<std::uint8_t>(CellState::unknown) == 0);
+constexpr int kWord = 8;
+bool all_unknown(const std::uint8_t* cells) {
+  std::uint64_t word = 0;
+  std::memcpy(&word, cells, kWord);
+  return word == 0;
+}
+int first_known(const std::uint8_t* row, int width) {
+  int x = 0;
+  while (x + kWord <= width && all_unknown(row + x)) x += kWord;
+  for (; x < width; ++x) {
+    if (row[x] != 0) return x;
+  }
+  return -1;
+}
+int last_known(const std::uint8_t* row, int width) {
+  int x = width;
+  while (x - kWord >= 0 && all_unknown(row + x - kWord)) x -= kWord;
+  for (--x; x >= 0; --x) {
+    if (row[x] != 0) return x;
+  }
+  return -1;
+}
 
 int cells_for(double metres, double resolution_m) { return static_cast<int>(std::ceil(metres / resolution_m)) + 1; }
 // Whole cells in a length (0.6 m is 6 cells of 0.1 m, despite rounding).
@@ -45,8 +88,8 @@ bool NavigationMap::rebuild(const GridView& grid, const Eigen::Vector2d& robot, 
   grid_ = grid;
   window_ = CellBox{};
   ++reach_stamp_;  // forget the previous flood fill
-  if (grid.cells == nullptr || grid.width <= 0 || grid.height <= 0 ||
-      static_cast<std::size_t>(grid.width) * static_cast<std::size_t>(grid.height) > capacity_) {
+  if (grid.cells == nullptr || grid.width <= 0 || grid.height <= 0 || grid.width > kMaxSide ||
+      grid.height > kMaxSide || static_cast<std::size_t>(grid.width) * static_cast<std::size_t>(grid.height) > capacity_) {
     grid_.width = 0;
     grid_.height = 0;
     return false;
@@ -267,15 +310,9 @@ void NavigationMap::find_window(const Eigen::Vector2d& robot, const Eigen::Vecto
   int y1 = -1;
   for (int y = 0; y < grid_.height; ++y) {
     const std::uint8_t* row = grid_.cells + grid_.index(0, y);
-    int first = -1;
-    int last = -1;
-    for (int x = 0; x < grid_.width; ++x) {
-      if (row[x] != static_cast<std::uint8_t>(CellState::unknown)) {
-        if (first < 0) first = x;
-        last = x;
-      }
-    }
+    const int first = first_known(row, grid_.width);
     if (first < 0) continue;
+    const int last = last_known(row, grid_.width);
     x0 = std::min(x0, first);
     x1 = std::max(x1, last);
     y0 = std::min(y0, y);
@@ -302,51 +339,78 @@ void NavigationMap::find_window(const Eigen::Vector2d& robot, const Eigen::Vecto
 double NavigationMap::site_distance_m(const std::int32_t* sites, int x, int y) const {
   if (!window_.contains(x, y)) return kNoSiteDistance_m;
   const std::int32_t site = sites[index(x, y)];
-  if (site < 0) return kNoSiteDistance_m;
-  const int dx = site % grid_.width - x;
-  const int dy = site / grid_.width - y;
+  if (site == kNoSite) return kNoSiteDistance_m;
+  const int dx = site_x(site) - x;
+  const int dy = site_y(site) - y;
   return grid_.resolution_m * std::sqrt(static_cast<double>(dx * dx + dy * dy));
 }
 
 // Two-pass nearest-site propagation (8SSEDT): each cell takes the nearest site of the
-// neighbours already visited; exact up to rare sub-cell ties, which is all a 10 cm grid needs.
+// neighbours already visited (in a fixed order, the first of equals kept); exact up to rare
+// sub-cell ties, which is all a 10 cm grid needs. Row by row with the window's edges
+// handled outside the inner loops, each candidate's distance computed once.
 template <typename IsSite>
 void NavigationMap::distance_transform(std::int32_t* sites, IsSite&& is_site) {
-  const int width = grid_.width;
-  auto distance2 = [width](std::int32_t site, int x, int y) {
-    const long dx = site % width - x;
-    const long dy = site / width - y;
-    return dx * dx + dy * dy;
-  };
-  auto relax = [&](int x, int y, int nx, int ny) {
-    if (!window_.contains(nx, ny)) return;
-    const std::int32_t candidate = sites[index(nx, ny)];
-    if (candidate < 0) return;
-    std::int32_t& own = sites[index(x, y)];
-    if (own < 0 || distance2(candidate, x, y) < distance2(own, x, y)) own = candidate;
-  };
   for (int y = window_.y0; y < window_.y1; ++y) {
     for (int x = window_.x0; x < window_.x1; ++x) {
-      sites[index(x, y)] = is_site(x, y) ? static_cast<std::int32_t>(index(x, y)) : -1;
+      sites[index(x, y)] = is_site(x, y) ? pack_site(x, y) : kNoSite;
     }
   }
+  const int x0 = window_.x0;
+  const int x1 = window_.x1;
+  // The nearest site so far of cell (x, y) is `best`, at squared distance `best2`.
+  struct Nearest {
+    int x, y;
+    std::int32_t best;
+    long best2;
+    void consider(std::int32_t candidate) {
+      const long candidate2 = site_distance2(candidate, x, y);
+      if (candidate2 < best2) {
+        best = candidate;
+        best2 = candidate2;
+      }
+    }
+  };
+  auto start = [](std::int32_t own, int x, int y) { return Nearest{x, y, own, site_distance2(own, x, y)}; };
+  // Forward: from the left, then the row above (left, straight, right); then from the right.
   for (int y = window_.y0; y < window_.y1; ++y) {
-    for (int x = window_.x0; x < window_.x1; ++x) {
-      relax(x, y, x - 1, y);
-      relax(x, y, x - 1, y - 1);
-      relax(x, y, x, y - 1);
-      relax(x, y, x + 1, y - 1);
+    std::int32_t* row = sites + index(0, y);
+    const std::int32_t* above = y > window_.y0 ? sites + index(0, y - 1) : nullptr;
+    for (int x = x0; x < x1; ++x) {
+      Nearest nearest = start(row[x], x, y);
+      if (x > x0) nearest.consider(row[x - 1]);
+      if (above != nullptr) {
+        if (x > x0) nearest.consider(above[x - 1]);
+        nearest.consider(above[x]);
+        if (x + 1 < x1) nearest.consider(above[x + 1]);
+      }
+      row[x] = nearest.best;
     }
-    for (int x = window_.x1 - 1; x >= window_.x0; --x) relax(x, y, x + 1, y);
+    for (int x = x1 - 2; x >= x0; --x) {
+      Nearest nearest = start(row[x], x, y);
+      nearest.consider(row[x + 1]);
+      row[x] = nearest.best;
+    }
   }
+  // Backward: the mirror image.
   for (int y = window_.y1 - 1; y >= window_.y0; --y) {
-    for (int x = window_.x1 - 1; x >= window_.x0; --x) {
-      relax(x, y, x + 1, y);
-      relax(x, y, x + 1, y + 1);
-      relax(x, y, x, y + 1);
-      relax(x, y, x - 1, y + 1);
+    std::int32_t* row = sites + index(0, y);
+    const std::int32_t* below = y + 1 < window_.y1 ? sites + index(0, y + 1) : nullptr;
+    for (int x = x1 - 1; x >= x0; --x) {
+      Nearest nearest = start(row[x], x, y);
+      if (x + 1 < x1) nearest.consider(row[x + 1]);
+      if (below != nullptr) {
+        if (x + 1 < x1) nearest.consider(below[x + 1]);
+        nearest.consider(below[x]);
+        if (x > x0) nearest.consider(below[x - 1]);
+      }
+      row[x] = nearest.best;
     }
-    for (int x = window_.x0; x < window_.x1; ++x) relax(x, y, x - 1, y);
+    for (int x = x0 + 1; x < x1; ++x) {
+      Nearest nearest = start(row[x], x, y);
+      nearest.consider(row[x - 1]);
+      row[x] = nearest.best;
+    }
   }
 }
 

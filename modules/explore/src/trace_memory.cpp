@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "stereoscout/core/geometry.hpp"
@@ -10,6 +11,8 @@ namespace stereoscout::explore {
 namespace {
 
 constexpr float kNever = -std::numeric_limits<float>::infinity();
+// Cells compared a block at a time: between two updates nearly every block is unchanged.
+constexpr std::size_t kCompareBlock = 64;
 
 }  // namespace
 
@@ -53,12 +56,16 @@ void TraceMemory::observe(const GridView& grid, double time_s, const CameraWedge
   }
   const auto free = static_cast<std::uint8_t>(CellState::free);
   const auto occupied = static_cast<std::uint8_t>(CellState::occupied);
-  for (std::size_t i = 0; i < count; ++i) {
-    if (previous_[i] != occupied && grid.cells[i] == occupied) {
-      if (previous_[i] == free) turned_occupied_s_[i] = static_cast<float>(time_s);
-      if (counting) views_[i] = 0;
+  for (std::size_t block = 0; block < count; block += kCompareBlock) {
+    const std::size_t end = std::min(count, block + kCompareBlock);
+    if (std::memcmp(previous_.data() + block, grid.cells + block, end - block) == 0) continue;
+    for (std::size_t i = block; i < end; ++i) {
+      if (previous_[i] != occupied && grid.cells[i] == occupied) {
+        if (previous_[i] == free) turned_occupied_s_[i] = static_cast<float>(time_s);
+        if (counting) views_[i] = 0;
+      }
+      previous_[i] = grid.cells[i];
     }
-    previous_[i] = grid.cells[i];
   }
   if (counting && view != nullptr) count_views(grid, *view);
 }

@@ -1,5 +1,7 @@
 // Goal value H(s) (paper VI) on hand-made grids, and goal selection.
+#include <algorithm>
 #include <cmath>
+#include <random>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -309,6 +311,58 @@ TEST(NavigationMap, InflatesObstaclesByTheRobotRadiusAndMargin) {
 // A corridor whose walls were never seen (blank: their cells stay unknown), far from the
 // start: the robot keeps its radius and margin from them as from occupied cells, except
 // where it stands (it cannot be in a wall).
+// The distance transforms against the nearest site found by brute force, on a scatter of
+// occupied and unknown cells: within a small fraction of a cell everywhere (two-pass
+// propagation is not exact in every configuration), and "none" where there is no site.
+TEST(NavigationMap, DistancesMatchTheNearestCellFoundByBruteForce) {
+  const int width = 90;
+  const int height = 70;
+  TestGrid grid(width, height, CellState::free);
+  std::mt19937 random(7);
+  std::uniform_int_distribution<int> pick_x(0, width - 1);
+  std::uniform_int_distribution<int> pick_y(0, height - 1);
+  for (int k = 0; k < 60; ++k) grid.set(pick_x(random), pick_y(random), CellState::occupied);
+  for (int k = 0; k < 12; ++k) grid.set(pick_x(random), pick_y(random), CellState::unknown);
+  grid.fill(0, 0, 12, 12, CellState::free);  // nothing under or near the robot
+  ExploreParams params = test_params(width, height);
+  params.explore.unknown_clearance = false;  // the occupied transform's sites: occupied cells only
+  params.explore.shadow_depth_m = 0.0;
+  NavigationMap map(params);
+  const Eigen::Vector2d robot(0.55, 0.55);
+  ASSERT_TRUE(map.rebuild(grid.view(), robot, robot));
+  auto nearest_m = [&](int x, int y, CellState state) {
+    double best = 1e9;
+    for (int sy = 0; sy < height; ++sy) {
+      for (int sx = 0; sx < width; ++sx) {
+        if (grid.cells[static_cast<std::size_t>(sy * width + sx)] == static_cast<std::uint8_t>(state)) {
+          best = std::min(best, 0.1 * std::hypot(sx - x, sy - y));
+        }
+      }
+    }
+    return best;
+  };
+  int exact = 0;
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const double occupied = nearest_m(x, y, CellState::occupied);
+      const double unknown = nearest_m(x, y, CellState::unknown);
+      EXPECT_NEAR(map.occupied_distance_m(x, y), occupied, 0.02) << x << ", " << y;
+      EXPECT_NEAR(map.unknown_distance_m(x, y), unknown, 0.02) << x << ", " << y;
+      if (std::abs(map.occupied_distance_m(x, y) - occupied) < 1e-12 &&
+          std::abs(map.unknown_distance_m(x, y) - unknown) < 1e-12) {
+        ++exact;
+      }
+    }
+  }
+  EXPECT_GE(exact, width * height * 99 / 100);
+  // No unknown cell at all: every distance is "none".
+  TestGrid known(width, height, CellState::free);
+  known.set(50, 40, CellState::occupied);
+  ASSERT_TRUE(map.rebuild(known.view(), robot, robot));
+  EXPECT_GT(map.unknown_distance_m(50, 30), 1e6);
+  EXPECT_NEAR(map.occupied_distance_m(50, 30), 1.0, 1e-12);
+}
+
 TEST(NavigationMap, UnknownCellsPathsMayNotCrossAreKeptClearOf) {
   TestGrid grid(80, 40, CellState::unknown);
   grid.fill(0, 10, 80, 32, CellState::free);  // 2.2 m of floor between y = 1 and 3.2
