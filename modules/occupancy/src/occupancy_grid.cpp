@@ -71,14 +71,17 @@ void classify_cells(const OccupancyGrid& grid, const CellThresholds& thresholds,
   const float* log_odds = grid.data();
   const std::size_t count = grid.geometry().cell_count();
   for (std::size_t i = 0; i < count; ++i) cells[i] = classify_log_odds(log_odds[i], occupied_above, free_below);
-  if (in_view == nullptr && looked_over == nullptr) return;
-  const GridGeometry& geometry = grid.geometry();
-  for (int y = 0; y < geometry.height_cells; ++y) {
-    const std::size_t row = static_cast<std::size_t>(y) * static_cast<std::size_t>(geometry.width_cells);
-    for (int x = 0; x < geometry.width_cells; ++x) {
-      if (in_view != nullptr) in_view[row + static_cast<std::size_t>(x)] = grid.in_view(x, y) ? 1U : 0U;
-      if (looked_over != nullptr) looked_over[row + static_cast<std::size_t>(x)] = grid.looked_over(x, y) ? 1U : 0U;
-    }
+  grid.copy_marks(in_view, looked_over);
+}
+
+void OccupancyGrid::copy_marks(std::uint8_t* in_view, std::uint8_t* looked_over) const {
+  const std::size_t count = geometry_.cell_count();
+  const std::uint8_t* flags = cell_flags_.get();
+  if (in_view != nullptr) {
+    for (std::size_t i = 0; i < count; ++i) in_view[i] = (flags[i] & kInView) != 0U ? 1U : 0U;
+  }
+  if (looked_over != nullptr) {
+    for (std::size_t i = 0; i < count; ++i) looked_over[i] = (flags[i] & kLookedOver) != 0U ? 1U : 0U;
   }
 }
 

@@ -208,6 +208,8 @@ class OccupancyGrid {
   bool same_cells_as(const OccupancyGrid& other) const;
   bool in_view(int cell_x, int cell_y) const { return (cell_flags_[index(cell_x, cell_y)] & kInView) != 0U; }
   bool looked_over(int cell_x, int cell_y) const { return (cell_flags_[index(cell_x, cell_y)] & kLookedOver) != 0U; }
+  // in_view() and looked_over() of every cell as 1 or 0, row-major (either may be null).
+  void copy_marks(std::uint8_t* in_view, std::uint8_t* looked_over) const;
   // Cell containing a map-frame point; false when outside the grid.
   bool cell_of(double x_m, double y_m, int& cell_x, int& cell_y) const;
 
