@@ -74,15 +74,24 @@ void classify_cells(const OccupancyGrid& grid, const CellThresholds& thresholds,
   grid.copy_marks(in_view, looked_over);
 }
 
+// Eight cells at a time: each byte of a word shifted down by its flag's bit and masked to 0 or 1.
 void OccupancyGrid::copy_marks(std::uint8_t* in_view, std::uint8_t* looked_over) const {
   const std::size_t count = geometry_.cell_count();
   const std::uint8_t* flags = cell_flags_.get();
-  if (in_view != nullptr) {
-    for (std::size_t i = 0; i < count; ++i) in_view[i] = (flags[i] & kInView) != 0U ? 1U : 0U;
-  }
-  if (looked_over != nullptr) {
-    for (std::size_t i = 0; i < count; ++i) looked_over[i] = (flags[i] & kLookedOver) != 0U ? 1U : 0U;
-  }
+  auto copy_flag = [&](std::uint8_t* out, int bit) {
+    constexpr std::uint64_t kLowBits = 0x0101010101010101ULL;
+    constexpr std::size_t kWord = sizeof(std::uint64_t);
+    std::size_t i = 0;
+    for (; i + kWord <= count; i += kWord) {
+      std::uint64_t word = 0;
+      std::memcpy(&word, flags + i, kWord);
+      word = (word >> bit) & kLowBits;
+      std::memcpy(out + i, &word, kWord);
+    }
+    for (; i < count; ++i) out[i] = static_cast<std::uint8_t>((flags[i] >> bit) & 1U);
+  };
+  if (in_view != nullptr) copy_flag(in_view, kInViewBit);
+  if (looked_over != nullptr) copy_flag(looked_over, kLookedOverBit);
 }
 
 OccupancyGrid::OccupancyGrid(const GridGeometry& geometry, const LogOddsModel& model)

@@ -221,8 +221,10 @@ class OccupancyGrid {
   struct ScanFrame;
   static constexpr std::uint8_t kLastHitAtCameraHeight = 1U;  // the cell's last hit was at the camera's height
   static constexpr std::uint8_t kHitThisScan = 2U;            // a column of the scan being inserted ends here
-  static constexpr std::uint8_t kInView = 4U;                  // a column's view covered the cell
-  static constexpr std::uint8_t kLookedOver = 8U;              // a column's ray passed over it, blind zone too
+  static constexpr int kInViewBit = 2;
+  static constexpr int kLookedOverBit = 3;
+  static constexpr std::uint8_t kInView = 1U << kInViewBit;          // a column's view covered the cell
+  static constexpr std::uint8_t kLookedOver = 1U << kLookedOverBit;  // a column's ray passed over it, blind zone too
 
   void add(int cell_x, int cell_y, float delta);
   void hit(int cell_x, int cell_y, bool at_camera_height);
