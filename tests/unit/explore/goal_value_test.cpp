@@ -24,6 +24,36 @@ double value_with_unknown_at(int distance_cells) {
   return goal_value.ray_value(grid.view(), 5, 25, 0);
 }
 
+TEST(GridView, FloorToIntIsStdFloorOnEitherSideOfZero) {
+  for (double value = -3.0; value <= 3.0; value += 0.125) {
+    EXPECT_EQ(floor_to_int(value), static_cast<int>(std::floor(value))) << value;
+  }
+  EXPECT_EQ(floor_to_int(-1e-12), -1);
+  EXPECT_EQ(floor_to_int(1399.9999999), 1399);
+  EXPECT_EQ(floor_to_int(-0.0), 0);
+}
+
+// A ray visits each cell it crosses once, in order, whatever its direction.
+TEST(GridView, MarchCellsVisitsTheCrossedCellsInOrder) {
+  std::vector<Eigen::Vector2i> visited;
+  march_cells(5, 5, Eigen::Vector2d(-1.0, 0.0), 3.0, [&](int x, int y) {
+    visited.emplace_back(x, y);
+    return true;
+  });
+  ASSERT_EQ(visited.size(), 3U);
+  EXPECT_EQ(visited[0], Eigen::Vector2i(4, 5));
+  EXPECT_EQ(visited[2], Eigen::Vector2i(2, 5));
+  visited.clear();
+  const Eigen::Vector2d diagonal = Eigen::Vector2d(1.0, -1.0).normalized();
+  march_cells(0, 0, diagonal, 2.9, [&](int x, int y) {
+    visited.emplace_back(x, y);
+    return true;
+  });
+  ASSERT_EQ(visited.size(), 2U);  // the corners grazed aside
+  EXPECT_EQ(visited[0], Eigen::Vector2i(1, -1));
+  EXPECT_EQ(visited[1], Eigen::Vector2i(2, -2));
+}
+
 TEST(GoalValue, UnknownCellExactlyPreferredDistanceAwayMaximisesV) {
   // r* = 2.0 m = 20 cells of 0.1 m.
   EXPECT_DOUBLE_EQ(value_with_unknown_at(20), 1.0);
