@@ -29,9 +29,9 @@ constexpr std::int32_t kNoSite = 0x7fffffff;  // x 65535, y 32767
 std::int32_t pack_site(int x, int y) { return static_cast<std::int32_t>((y << 16) | x); }
 int site_x(std::int32_t site) { return site & 0xffff; }
 int site_y(std::int32_t site) { return site >> 16; }
-long site_distance2(std::int32_t site, int x, int y) {
-  const long dx = site_x(site) - x;
-  const long dy = site_y(site) - y;
+std::int64_t site_distance2(std::int32_t site, int x, int y) {
+  const std::int64_t dx = site_x(site) - x;
+  const std::int64_t dy = site_y(site) - y;
   return dx * dx + dy * dy;
 }
 
@@ -362,9 +362,9 @@ void NavigationMap::distance_transform(std::int32_t* sites, IsSite&& is_site) {
   struct Nearest {
     int x, y;
     std::int32_t best;
-    long best2;
+    std::int64_t best2;
     void consider(std::int32_t candidate) {
-      const long candidate2 = site_distance2(candidate, x, y);
+      const std::int64_t candidate2 = site_distance2(candidate, x, y);
       if (candidate2 < best2) {
         best = candidate;
         best2 = candidate2;

@@ -79,17 +79,18 @@ class GridEdit {
   bool copied_ = false;
 };
 
-// Visits the cells a ray from the centre of cell (x, y) along the unit vector `direction`
-// crosses within length_cells, in order and each once, the start cell excepted. It marches
-// in quarter-cell steps, so no cell the ray crosses is skipped (corners grazed aside). Stops
-// early when visit(cell_x, cell_y) returns false.
-// floor() of a value well inside int's range, as an int, without the library call that the
-// x86-64 baseline (no SSE4.1 rounding) makes of std::floor: the ray march's inner loop.
+// floor() of a value well inside int's range, as an int: one conversion and a compare, where
+// std::floor on the x86-64 baseline (no SSE4.1 rounding) is a longer sequence of conversions
+// and masks back to a double. The ray march's inner loop.
 inline int floor_to_int(double value) {
   const int truncated = static_cast<int>(value);
   return value < static_cast<double>(truncated) ? truncated - 1 : truncated;
 }
 
+// Visits the cells a ray from the centre of cell (x, y) along the unit vector `direction`
+// crosses within length_cells, in order and each once, the start cell excepted. It marches
+// in quarter-cell steps, so no cell the ray crosses is skipped (corners grazed aside). Stops
+// early when visit(cell_x, cell_y) returns false.
 template <typename Visit>
 void march_cells(int x, int y, const Eigen::Vector2d& direction, double length_cells, Visit&& visit) {
   const double step_cells = 0.25;
