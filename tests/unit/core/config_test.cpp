@@ -42,6 +42,25 @@ TEST(Config, ShippedFileLoadsCleanly) {
   EXPECT_EQ(load.config.filter.particles, 1000);
 }
 
+// The 5 cm variant keeps the default's metric sizes: the grid's extent, the lethal margin
+// beyond the robot's radius and the goal candidates' lattice.
+TEST(Config, TheFiveCentimetreGridVariantKeepsTheDefaultsMetricSizes) {
+  const SystemConfigLoad load = load_system_config(source_path("config/grid-5cm.yaml"));
+  ASSERT_TRUE(load.ok()) << load.error_text();
+  const SystemConfig defaults;
+  const SystemConfig& variant = load.config;
+  EXPECT_DOUBLE_EQ(variant.grid.resolution_m, 0.05);
+  EXPECT_DOUBLE_EQ(variant.grid.width_cells * variant.grid.resolution_m,
+                   defaults.grid.width_cells * defaults.grid.resolution_m);
+  EXPECT_DOUBLE_EQ(variant.grid.height_cells * variant.grid.resolution_m,
+                   defaults.grid.height_cells * defaults.grid.resolution_m);
+  EXPECT_DOUBLE_EQ(variant.explore.lethal_margin_cells * variant.grid.resolution_m,
+                   defaults.explore.lethal_margin_cells * defaults.grid.resolution_m);
+  EXPECT_DOUBLE_EQ(variant.explore.candidate_stride_cells * variant.grid.resolution_m,
+                   defaults.explore.candidate_stride_cells * defaults.grid.resolution_m);
+  EXPECT_EQ(variant.filter.particles, defaults.filter.particles);  // the rest is the default's
+}
+
 TEST(Config, ValuesOverrideDefaultsAndOmittedKeysKeepThem) {
   const SystemConfigLoad load = load_system_config_text(
       "filter:\n  particles: 2000\nrobot:\n  max_speed_mps: 0.2\ncamera:\n  has_pan_unit: false\n", "test.yaml");
