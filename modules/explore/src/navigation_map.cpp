@@ -5,6 +5,8 @@
 #include <cstring>
 #include <limits>
 
+#include "stereoscout/core/config/grid.hpp"
+
 namespace stereoscout::explore {
 namespace {
 
@@ -24,8 +26,12 @@ constexpr std::uint8_t kSizeLarger = 3;
 // bits), so that distances need no division. "None" is a site far outside any grid of at most
 // kMaxSide cells a side (the config's limit): farther from every cell than any real site, so
 // the transform needs no test for it.
-constexpr int kMaxSide = 20000;
+constexpr int kMaxSide = core::kMaxGridSideCells;
 constexpr std::int32_t kNoSite = 0x7fffffff;  // x 65535, y 32767
+constexpr std::int64_t kMaxSideSquared = std::int64_t{kMaxSide} * kMaxSide;
+static_assert(kMaxSide < (1 << 15), "packed coordinates take 15 bits each");
+static_assert(std::int64_t{(1 << 16) - kMaxSide} * ((1 << 16) - kMaxSide) > 2 * kMaxSideSquared,
+              "no site must lie farther from every cell than any real site");
 std::int32_t pack_site(int x, int y) { return static_cast<std::int32_t>((y << 16) | x); }
 int site_x(std::int32_t site) { return site & 0xffff; }
 int site_y(std::int32_t site) { return site >> 16; }
