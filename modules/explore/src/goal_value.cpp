@@ -106,6 +106,7 @@ double GoalValue::ray_value(const GridView& grid, const NavigationMap* pockets, 
     if (state == CellState::free) return true;
     if (state == CellState::occupied) return false;
     if (pockets != nullptr && pockets->in_pocket(cx, cy)) return false;  // nothing to see there
+    if (params_.explore.in_view_ends_goal_rays && grid.was_in_view(cx, cy)) return false;  // seen, not measurable
     const double dx = cx - x;
     const double dy = cy - y;
     const double distance_m = grid.resolution_m * std::sqrt(dx * dx + dy * dy);

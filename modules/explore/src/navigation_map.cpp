@@ -431,7 +431,7 @@ bool NavigationMap::unknown_passable(int x, int y) const {
   const Eigen::Vector2d centre = grid_.center(x, y);
   const double from_robot2 = (centre - robot_).squaredNorm();
   if (from_robot2 <= params_.robot_radius_m * params_.robot_radius_m) return true;
-  if (grid_.was_in_view(x, y)) return false;
+  if (params_.explore.in_view_blocks_travel && grid_.was_in_view(x, y)) return false;
   const double travel2 = params_.explore.unknown_travel_radius_m * params_.explore.unknown_travel_radius_m;
   return (centre - extra_unknown_centre_).squaredNorm() <= travel2 ||
          (params_.explore.unknown_travel_near_robot && from_robot2 <= travel2 &&

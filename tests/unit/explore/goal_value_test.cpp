@@ -73,6 +73,35 @@ TEST(GoalValue, RaysAreCutAtThePreferredDistancePlusThreeSigma) {
   EXPECT_EQ(value_with_unknown_at(36), 0.0);
 }
 
+// office seed 5 on the 5 cm grid: goals beside the building's outer wall, which the grid had
+// not held, took their value from its unknown cells and from the outside beyond them. With
+// in_view_ends_goal_rays a ray ends with no value at an unknown cell the camera had in view
+// (the stereo could not measure it: another look shows no more); unknown cells no view
+// covered keep their value.
+TEST(GoalValue, AnUnknownCellThatWasInViewEndsTheRayWithNoValue) {
+  TestGrid grid(60, 50, CellState::free);
+  grid.fill(25, 0, 60, 50, CellState::unknown);  // from 2 m east of (5, 25) on
+  std::vector<std::uint8_t> in_view(grid.cells.size(), 0);
+  for (int y = 25; y < 50; ++y) in_view[grid.view().index(25, y)] = 1;  // its first column, north half
+  GridView seen = grid.view();
+  seen.in_view = in_view.data();
+  ExploreParams params = test_params(60, 50);
+  const GoalValue plain(params);
+  params.explore.in_view_ends_goal_rays = true;
+  const GoalValue skipping(params);
+  const std::size_t east = 0;
+  const std::size_t north_east = 9;   // 45 degrees: meets the column at (25, 45)
+  const std::size_t south_east = 63;  // -45 degrees: at (25, 5), never in view
+  EXPECT_DOUBLE_EQ(plain.ray_value(seen, 5, 25, east), 1.0);
+  EXPECT_DOUBLE_EQ(skipping.ray_value(seen, 5, 25, east), 0.0);
+  EXPECT_GT(plain.ray_value(seen, 5, 25, north_east), 0.0);
+  EXPECT_DOUBLE_EQ(skipping.ray_value(seen, 5, 25, north_east), 0.0);
+  EXPECT_DOUBLE_EQ(skipping.ray_value(seen, 5, 25, south_east), plain.ray_value(seen, 5, 25, south_east));
+  EXPECT_GT(skipping.ray_value(seen, 5, 25, south_east), 0.0);
+  // Without the marks (grid.in_view_range_m 0) the rule changes nothing.
+  EXPECT_DOUBLE_EQ(skipping.value(grid.view(), 5, 25), plain.value(grid.view(), 5, 25));
+}
+
 TEST(GoalValue, OccupiedCellBlocksTheRay) {
   TestGrid grid(60, 50, CellState::free);
   grid.set(25, 25, CellState::unknown);
@@ -336,6 +365,12 @@ TEST(NavigationMap, InflatesObstaclesByTheRobotRadiusAndMargin) {
   EXPECT_FALSE(map.passable(14, 10));  // in view: a surface the stereo could not measure
   EXPECT_TRUE(map.passable(10, 14));   // as near, never in view: the blind zone
   EXPECT_TRUE(map.passable(43, 40));
+  // Unless the marks are for the goal value only.
+  ExploreParams value_only_params = params;
+  value_only_params.explore.in_view_blocks_travel = false;
+  NavigationMap value_only(value_only_params);
+  ASSERT_TRUE(value_only.rebuild(seen, robot, start));
+  EXPECT_TRUE(value_only.passable(14, 10));
 }
 
 // A corridor whose walls were never seen (blank: their cells stay unknown), far from the
