@@ -41,7 +41,8 @@ LogOddsModel LogOddsModel::from_config(const core::GridConfig& config) {
   return {static_cast<float>(config.log_odds_hit), static_cast<float>(config.log_odds_miss),
           static_cast<float>(config.log_odds_min), static_cast<float>(config.log_odds_max),
           static_cast<float>(config.in_view_range_m), static_cast<float>(config.looked_over_range_m),
-          static_cast<float>(config.free_end_sigmas), config.once_per_scan};
+          static_cast<float>(config.free_end_sigmas), static_cast<float>(config.free_end_short_m),
+          config.once_per_scan};
 }
 
 CellThresholds CellThresholds::from_config(const core::GridConfig& config) {
@@ -348,7 +349,8 @@ void OccupancyGrid::insert_column(const Eigen::Vector2d& origin, const Eigen::Ve
     ++counts_.rays_rejected;
     return;
   }
-  const double reach = obstacle ? length : length - geometry_.resolution_m;
+  const double short_of_end = std::max<double>(geometry_.resolution_m, model_.free_end_short_m);
+  const double reach = obstacle ? length : length - short_of_end;
   const auto at = [&](double distance) { return Eigen::Vector2d(origin + along * (distance / length)); };
   // The blind zone: only obstacles at the camera's height would have been seen there.
   const double blind_end = std::min(visible_from, reach);

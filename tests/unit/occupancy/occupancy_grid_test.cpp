@@ -56,6 +56,39 @@ TEST(OccupancyGrid, FreeColumnStopsOneCellShortOfItsEndAndInvalidDoesNothing) {
   EXPECT_TRUE(untouched.same_cells_as(empty));
 }
 
+// On a 5 cm grid a cell short is 5 cm, less than the farthest floor point's range error at a
+// few metres: floor seen to 0.08 m beyond a wall's face cleared the wall's cell. With
+// free_end_short_m the ray stops as short in metres as on the 10 cm grid.
+TEST(OccupancyGrid, AFreeColumnStopsFreeEndShortMShortOfItsEndOnAFinerGrid) {
+  GridGeometry fine;
+  fine.width_cells = 40;
+  fine.height_cells = 40;
+  fine.resolution_m = 0.05;
+  fine.origin_x_m = -1.0;
+  fine.origin_y_m = -1.0;
+  // Origin (0.025, 0.025) is cell (20, 20); the end (0.625, 0.025) is cell (32, 20).
+  const core::DepthScan scan = one_column(0.6F, 0.0F, Kind::free);
+  const core::Pose2 pose{0.025, 0.025, 0.0};
+  OccupancyGrid a_cell_short(fine, LogOddsModel{});
+  a_cell_short.insert(scan, pose);
+  for (int x = 20; x <= 31; ++x) EXPECT_FLOAT_EQ(a_cell_short.log_odds(x, 20), -0.4F) << x;  // to 0.575 m
+  EXPECT_FLOAT_EQ(a_cell_short.log_odds(32, 20), 0.0F);
+  LogOddsModel metric;
+  metric.free_end_short_m = 0.1F;
+  OccupancyGrid tenth_short(fine, metric);
+  tenth_short.insert(scan, pose);
+  for (int x = 20; x <= 30; ++x) EXPECT_FLOAT_EQ(tenth_short.log_odds(x, 20), -0.4F) << x;  // to 0.525 m
+  EXPECT_FLOAT_EQ(tenth_short.log_odds(31, 20), 0.0F);
+  EXPECT_FLOAT_EQ(tenth_short.log_odds(32, 20), 0.0F);
+  // Less than a cell changes nothing: the 10 cm grid stops a cell short whatever it says.
+  metric.free_end_short_m = 0.05F;
+  OccupancyGrid coarse(small_geometry(), metric);
+  OccupancyGrid coarse_default(small_geometry(), LogOddsModel{});
+  coarse.insert(one_column(0.38F, 0.0F, Kind::free), core::Pose2{0.05, 0.05, 0.0});
+  coarse_default.insert(one_column(0.38F, 0.0F, Kind::free), core::Pose2{0.05, 0.05, 0.0});
+  EXPECT_TRUE(coarse.same_cells_as(coarse_default));
+}
+
 // A wall at x = 0.6 m (cell 16) seen once; then floor seen up to 0.25 m beyond it from the
 // other side, as a far view's farthest floor point overshoots by its range error (0.2 m).
 TEST(OccupancyGrid, AFreeColumnsUncertainEndDoesNotEraseAWallButClearsUnknownCells) {

@@ -11,10 +11,10 @@
 //     sliver of its cell, and the rays through the door cross the rest of it);
 //   - an obstacle column's end cell gets log_odds_hit (an obstacle nearer than the visible
 //     floor marks only its own cell);
-//   - a free column (floor seen up to its end) stops one cell short of its end point: the
-//     farthest floor point often lies in the cell of the wall behind it, which must not be
-//     cleared; nothing is cleared when that leaves no visible floor. Within free_end_sigmas
-//     standard deviations of its end's range (DepthScanColumn::end_range_sigma_m) it lowers
+//   - a free column (floor seen up to its end) stops one cell (or free_end_short_m, if more)
+//     short of its end point: the farthest floor point often lies in the cell of the wall
+//     behind it, which must not be cleared (on a finer grid, in the cell after); nothing is
+//     cleared when that leaves no visible floor. Within free_end_sigmas standard deviations of its end's range (DepthScanColumn::end_range_sigma_m) it lowers
 //     no cell that holds an obstacle (log-odds above 0): that end is the farthest of the
 //     column's floor points, the one the disparity error put farthest out, so at a wall's
 //     base it lies beyond the wall, and floor seen up to a wall from both sides erased it
@@ -97,6 +97,7 @@ struct LogOddsModel {
   float in_view_range_m = 0.0F;  // grid.in_view_range_m (0: nothing is marked)
   float looked_over_range_m = 0.0F;  // grid.looked_over_range_m (0: nothing is marked)
   float free_end_sigmas = 0.0F;  // grid.free_end_sigmas (0: a free column's misses are all alike)
+  float free_end_short_m = 0.0F;  // grid.free_end_short_m (0: a cell short)
   bool once_per_scan = false;    // grid.once_per_scan (see the header comment)
   static LogOddsModel from_config(const core::GridConfig& config);
 };
