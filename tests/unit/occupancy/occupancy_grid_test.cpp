@@ -57,15 +57,13 @@ TEST(OccupancyGrid, FreeColumnStopsOneCellShortOfItsEndAndInvalidDoesNothing) {
 }
 
 // On a 5 cm grid a cell short is 5 cm, less than the farthest floor point's range error at a
-// few metres: floor seen to 0.08 m beyond a wall's face cleared the wall's cell. With
+// few metres: floor seen a few centimetres beyond a wall's face clears the wall's cell. With
 // free_end_short_m the ray stops as short in metres as on the 10 cm grid.
 TEST(OccupancyGrid, AFreeColumnStopsFreeEndShortMShortOfItsEndOnAFinerGrid) {
-  GridGeometry fine;
+  GridGeometry fine = small_geometry();  // the same 2 m square, at half the cell size
   fine.width_cells = 40;
   fine.height_cells = 40;
   fine.resolution_m = 0.05;
-  fine.origin_x_m = -1.0;
-  fine.origin_y_m = -1.0;
   // Origin (0.025, 0.025) is cell (20, 20); the end (0.625, 0.025) is cell (32, 20).
   const core::DepthScan scan = one_column(0.6F, 0.0F, Kind::free);
   const core::Pose2 pose{0.025, 0.025, 0.0};

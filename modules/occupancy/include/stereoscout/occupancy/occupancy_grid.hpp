@@ -14,10 +14,11 @@
 //   - a free column (floor seen up to its end) stops one cell (or free_end_short_m, if more)
 //     short of its end point: the farthest floor point often lies in the cell of the wall
 //     behind it, which must not be cleared (on a finer grid, in the cell after); nothing is
-//     cleared when that leaves no visible floor. Within free_end_sigmas standard deviations of its end's range (DepthScanColumn::end_range_sigma_m) it lowers
-//     no cell that holds an obstacle (log-odds above 0): that end is the farthest of the
-//     column's floor points, the one the disparity error put farthest out, so at a wall's
-//     base it lies beyond the wall, and floor seen up to a wall from both sides erased it
+//     cleared when that leaves no visible floor. Within free_end_sigmas standard deviations
+//     of its end's range (DepthScanColumn::end_range_sigma_m) it lowers no cell that holds
+//     an obstacle (log-odds above 0): that end is the farthest of the column's floor
+//     points, the one the disparity error put farthest out, so at a wall's base it lies
+//     beyond the wall, and floor seen up to a wall from both sides erased it
 //     (the office's corridor walls, where plans then ran). Unknown and free cells there are
 //     cleared as before: ending the ray short instead left strips of unknown cells before
 //     every wall and in every door seen from afar, which closed the doors. Off by default:
