@@ -42,7 +42,7 @@ LogOddsModel LogOddsModel::from_config(const core::GridConfig& config) {
           static_cast<float>(config.log_odds_min), static_cast<float>(config.log_odds_max),
           static_cast<float>(config.in_view_range_m), static_cast<float>(config.looked_over_range_m),
           static_cast<float>(config.free_end_sigmas), static_cast<float>(config.free_end_short_m),
-          config.once_per_scan};
+          static_cast<float>(config.hit_full_weight_range_m), config.once_per_scan};
 }
 
 CellThresholds CellThresholds::from_config(const core::GridConfig& config) {
@@ -178,11 +178,20 @@ void OccupancyGrid::add(int cell_x, int cell_y, float delta) {
   cell = std::clamp(cell + delta, model_.min, model_.max);
 }
 
-void OccupancyGrid::hit(int cell_x, int cell_y, bool at_camera_height) {
+void OccupancyGrid::hit(int cell_x, int cell_y, bool at_camera_height, float log_odds) {
   if (!geometry_.contains(cell_x, cell_y)) return;
-  add(cell_x, cell_y, model_.hit);
+  add(cell_x, cell_y, log_odds);
   std::uint8_t& flags = cell_flags_[index(cell_x, cell_y)];
   flags = static_cast<std::uint8_t>((flags & (kHitThisScan | kInView | kLookedOver)) | (at_camera_height ? kLastHitAtCameraHeight : 0U));
+}
+
+// Stereo's range error grows with the square of the range: beyond the full-weight range a
+// hit's log-odds falls with it, so that one far hit alone does not make its cell occupied.
+float OccupancyGrid::hit_log_odds(double range_m) const {
+  const double full = model_.hit_full_weight_range_m;
+  if (!(full > 0.0) || !(range_m > full)) return model_.hit;
+  const double ratio = full / range_m;
+  return static_cast<float>(model_.hit * ratio * ratio);
 }
 
 // A ray's two ends in cell units (x_m - origin) / resolution; false when an end is not finite
@@ -271,7 +280,7 @@ void OccupancyGrid::miss_unless_occupied(int cell_x, int cell_y) {
 
 // Every cell but the last is passed through (miss); the last is where the column ends.
 void OccupancyGrid::cast_ray(double start_x, double start_y, double end_x, double end_y, bool end_is_obstacle,
-                             bool at_camera_height, double firm_m) {
+                             bool at_camera_height, float end_log_odds, double firm_m) {
   GridSegment segment;
   if (!grid_coordinates(start_x, start_y, end_x, end_y, segment)) {
     ++counts_.rays_rejected;
@@ -299,7 +308,7 @@ void OccupancyGrid::cast_ray(double start_x, double start_y, double end_x, doubl
   const int x1 = static_cast<int>(std::floor(segment.x1));
   const int y1 = static_cast<int>(std::floor(segment.y1));
   if (end_is_obstacle) {
-    hit(x1, y1, at_camera_height);
+    hit(x1, y1, at_camera_height, end_log_odds);
   } else {
     pass(x1, y1);
   }
@@ -364,7 +373,8 @@ void OccupancyGrid::insert_column(const Eigen::Vector2d& origin, const Eigen::Ve
   const double looked_over_end = std::min<double>(model_.looked_over_range_m, length);
   if (looked_over_end > 0.0) mark_cells(origin, at(looked_over_end), kLookedOver);
   if (obstacle && length <= visible_from) {
-    cast_ray(end.x(), end.y(), end.x(), end.y(), true, point.obstacle_at_camera_height, kAlwaysFirm);  // its own cell only
+    cast_ray(end.x(), end.y(), end.x(), end.y(), true, point.obstacle_at_camera_height, hit_log_odds(length),
+             kAlwaysFirm);  // its own cell only
     return;
   }
   if (!obstacle && !(reach > visible_from)) return;  // no visible floor on this ray
@@ -373,7 +383,8 @@ void OccupancyGrid::insert_column(const Eigen::Vector2d& origin, const Eigen::Ve
   // A free column's end may lie beyond the wall behind it by its range error (see the header).
   const double uncertain = obstacle ? 0.0 : model_.free_end_sigmas * point.end_range_sigma_m();
   const double firm = uncertain > 0.0 ? length - uncertain - visible_from : kAlwaysFirm;
-  cast_ray(start.x(), start.y(), stop.x(), stop.y(), obstacle, point.obstacle_at_camera_height, firm);
+  cast_ray(start.x(), start.y(), stop.x(), stop.y(), obstacle, point.obstacle_at_camera_height, hit_log_odds(length),
+           firm);
 }
 
 void OccupancyGrid::mark_cells(const Eigen::Vector2d& from, const Eigen::Vector2d& to, std::uint8_t flag) {

@@ -87,6 +87,29 @@ TEST(OccupancyGrid, AFreeColumnStopsFreeEndShortMShortOfItsEndOnAFinerGrid) {
   EXPECT_TRUE(coarse.same_cells_as(coarse_default));
 }
 
+// Stereo's range error grows with the square of the range: with hit_full_weight_range_m at
+// 0.5 m, an obstacle 1 m away adds a quarter of log_odds_hit, one 0.5 m away (or nearer) all
+// of it. One far hit alone leaves its cell short of occupied; four agreeing scans make it so.
+TEST(OccupancyGrid, AnObstacleBeyondTheFullWeightRangeAddsLessByTheSquareOfItsRange) {
+  LogOddsModel model;
+  model.hit_full_weight_range_m = 0.5F;
+  const CellThresholds thresholds;
+  const core::Pose2 pose{0.05, 0.05, 0.0};  // the origin, cell (10, 10)
+  OccupancyGrid grid(small_geometry(), model);
+  core::DepthScan near_and_far = one_column(0.4F, 0.0F, Kind::obstacle);  // cell (14, 10), 0.4 m
+  near_and_far.columns.push_back({0.0F, 0.8F, Kind::obstacle});           // cell (10, 18), 0.8 m
+  grid.insert(near_and_far, pose);
+  EXPECT_FLOAT_EQ(grid.log_odds(14, 10), 0.85F);
+  EXPECT_FLOAT_EQ(grid.log_odds(10, 18), 0.85F * 0.25F / 0.64F);
+  EXPECT_NE(thresholds.classify(grid.log_odds(10, 18)), CellState::occupied);
+  const core::DepthScan far = one_column(0.0F, 0.8F, Kind::obstacle);
+  for (int scan = 0; scan < 3; ++scan) grid.insert(far, pose);
+  EXPECT_EQ(thresholds.classify(grid.log_odds(10, 18)), CellState::occupied);
+  OccupancyGrid full_weight(small_geometry(), LogOddsModel{});
+  full_weight.insert(far, pose);
+  EXPECT_FLOAT_EQ(full_weight.log_odds(10, 18), 0.85F);
+}
+
 // A wall at x = 0.6 m (cell 16) seen once; then floor seen up to 0.25 m beyond it from the
 // other side, as a far view's farthest floor point overshoots by its range error (0.2 m).
 TEST(OccupancyGrid, AFreeColumnsUncertainEndDoesNotEraseAWallButClearsUnknownCells) {

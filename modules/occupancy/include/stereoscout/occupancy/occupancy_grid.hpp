@@ -10,7 +10,9 @@
 //     the same scan ends on an obstacle: the hit wins (a thin poster beside a door fills a
 //     sliver of its cell, and the rays through the door cross the rest of it);
 //   - an obstacle column's end cell gets log_odds_hit (an obstacle nearer than the visible
-//     floor marks only its own cell);
+//     floor marks only its own cell); with hit_full_weight_range_m, an end farther than that
+//     gets log_odds_hit x (that / range)^2, as its range error grows with the square of the
+//     range: a far wall seen at a slant lands its hits along the wall, in a door beside it;
 //   - a free column (floor seen up to its end) stops one cell (or free_end_short_m, if more)
 //     short of its end point: the farthest floor point often lies in the cell of the wall
 //     behind it, which must not be cleared (on a finer grid, in the cell after); nothing is
@@ -99,6 +101,7 @@ struct LogOddsModel {
   float looked_over_range_m = 0.0F;  // grid.looked_over_range_m (0: nothing is marked)
   float free_end_sigmas = 0.0F;  // grid.free_end_sigmas (0: a free column's misses are all alike)
   float free_end_short_m = 0.0F;  // grid.free_end_short_m (0: a cell short)
+  float hit_full_weight_range_m = 0.0F;  // grid.hit_full_weight_range_m (0: every hit in full)
   bool once_per_scan = false;    // grid.once_per_scan (see the header comment)
   static LogOddsModel from_config(const core::GridConfig& config);
 };
@@ -229,7 +232,9 @@ class OccupancyGrid {
   static constexpr std::uint8_t kLookedOver = 1U << kLookedOverBit;  // a column's ray passed over it, blind zone too
 
   void add(int cell_x, int cell_y, float delta);
-  void hit(int cell_x, int cell_y, bool at_camera_height);
+  void hit(int cell_x, int cell_y, bool at_camera_height, float log_odds);
+  // An obstacle end's log-odds at this range from the camera (hit_full_weight_range_m).
+  float hit_log_odds(double range_m) const;
   // log_odds_miss, unless a column of the scan being inserted ends in the cell.
   void miss(int cell_x, int cell_y);
   // The same, but not to a cell that holds an obstacle (log-odds above 0).
@@ -244,9 +249,9 @@ class OccupancyGrid {
   template <typename EachPoint>
   void insert_points(const ScanFrame& frame, EachPoint&& each_point);
   // Cells whose centre lies farther than firm_m along the ray from its start get
-  // miss_unless_occupied instead of miss (infinity: none).
+  // miss_unless_occupied instead of miss (infinity: none). An obstacle end adds end_log_odds.
   void cast_ray(double start_x, double start_y, double end_x, double end_y, bool end_is_obstacle,
-                bool at_camera_height, double firm_m);
+                bool at_camera_height, float end_log_odds, double firm_m);
   // Misses, before the end cell, only the cells whose last hit was at the camera's height.
   void clear_camera_height_hits(double start_x, double start_y, double end_x, double end_y);
   // One column: origin and end point in the map frame.
