@@ -12,8 +12,8 @@
 //   - an obstacle column's end cell gets log_odds_hit (an obstacle nearer than the visible
 //     floor marks only its own cell); with hit_full_weight_range_m, an end farther than that
 //     gets log_odds_hit x (that / range)^2, as its range error grows with the square of the
-//     range, and one hit makes a cell occupied: a far wall seen at a slant lands its hits
-//     along the wall, in a door beside it;
+//     range, and one hit makes a cell occupied: a far wall seen at a slant may land its
+//     hits along the wall, in a door beside it;
 //   - a free column (floor seen up to its end) stops one cell (or free_end_short_m, if more)
 //     short of its end point: the farthest floor point often lies in the cell of the wall
 //     behind it, which must not be cleared (on a finer grid, in the cell after); nothing is
