@@ -88,7 +88,7 @@ TEST(OccupancyGrid, AFreeColumnStopsFreeEndShortMShortOfItsEndOnAFinerGrid) {
 }
 
 // Stereo's range error grows with the square of the range: with hit_full_weight_range_m at
-// 0.5 m, an obstacle 1 m away adds a quarter of log_odds_hit, one 0.5 m away (or nearer) all
+// 0.5 m, an obstacle 0.8 m away adds (0.5 / 0.8)^2 = 0.39 of log_odds_hit, one 0.4 m away all
 // of it. One far hit alone leaves its cell short of occupied; four agreeing scans make it so.
 TEST(OccupancyGrid, AnObstacleBeyondTheFullWeightRangeAddsLessByTheSquareOfItsRange) {
   LogOddsModel model;
