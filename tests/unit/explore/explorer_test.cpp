@@ -114,6 +114,38 @@ TEST(Explorer, APlanBlockedOnlyByAPasserByIsKeptWithWaitForWalkers) {
   }
 }
 
+// A passer-by's cells across the kept plan 1 m ahead: with walker_hold_s the robot stands still
+// (no drive, no turn) until the hold ends, then drives on along the same plan. Across it 3 m
+// ahead, beyond walker_hold_within_m, the robot drives on at once.
+TEST(Explorer, APasserByNearAKeptPlanHoldsTheRobotStillForWalkerHoldS) {
+  for (const std::size_t ahead : {std::size_t{10}, std::size_t{30}}) {
+    Corridor scene;
+    ExploreParams params = standing_robot_params(true);
+    params.explore.walker_hold_s = 3.0;
+    params.explore.walker_hold_within_m = 1.5;
+    Explorer explorer(params);
+    explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.0, true));
+    ASSERT_EQ(explorer.state(), ExploreState::drive);
+    fill_across_plan(scene, explorer.plan().cells[ahead], CellState::occupied);
+    const ExploreOutput kept = explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 1.0, true));
+    ASSERT_EQ(explorer.counters().plans_kept_for_walkers, 1U);
+    const bool near = ahead == 10;
+    EXPECT_EQ(explorer.counters().walker_holds, near ? 1U : 0U) << ahead;
+    const ExploreOutput held = explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 3.9, false));
+    for (const ExploreOutput& output : {kept, held}) {
+      EXPECT_EQ(output.drive.linear_mps == 0.0 && output.drive.angular_rad_s == 0.0, near) << ahead;
+    }
+    const ExploreOutput after = explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 4.1, false));
+    EXPECT_GT(after.drive.linear_mps, 0.0) << ahead;
+    EXPECT_EQ(explorer.counters().replans, 0U) << ahead;
+    std::size_t holds_journaled = 0;
+    for (std::size_t i = 0; i < explorer.journal().size(); ++i) {
+      if (explorer.journal()[i].kind == ExploreEventKind::walker_hold) ++holds_journaled;
+    }
+    EXPECT_EQ(holds_journaled, near ? 1U : 0U) << ahead;
+  }
+}
+
 // Cells that look like a passer-by's can be a blank wall's, erased by grazing rays and restored
 // by the next view. So a goal's plans are kept for walker_wait_per_goal_s in all (the spans
 // add up), then replanned as without wait_for_walkers.

@@ -117,6 +117,7 @@ struct ExploreCounters {
   std::uint64_t traces_confirmed = 0;  // trace cells still occupied after a look: obstacles since
   std::uint64_t plans_kept_for_walkers = 0;  // blocked only by passers-by: kept (wait_for_walkers)
   std::uint64_t walker_waits_ended = 0;      // a goal's walker_wait_per_goal_s used up: replanned as without it
+  std::uint64_t walker_holds = 0;            // a kept plan's passer-by near: the robot stood still (walker_hold_s)
   std::uint64_t traces_seen_standing = 0;  // cells seen occupied in view for trace_view_updates: never traces
 };
 
@@ -158,6 +159,7 @@ class Explorer {
   bool blocked_too_often() const;
   void stop_waiting_for_walkers(double time_s);
   void begin_walker_waits();
+  void hold_for_walker(const ExploreInput& input, const Eigen::Vector2i& blocked_cell);
   bool plan_to_goal(const ExploreInput& input);
   void check_plan(const ExploreInput& input);
   bool replan(const ExploreInput& input);
@@ -273,6 +275,7 @@ class Explorer {
   bool waiting_for_walkers_ = false;
   double walker_wait_since_s_ = 0.0;
   double walker_waited_s_ = 0.0;
+  double walker_hold_until_s_ = 0.0;  // standing still for a kept plan's passer-by until then (walker_hold_s)
 };
 
 }  // namespace stereoscout::explore
