@@ -155,9 +155,12 @@ BENCHMARK(BM_IndexLookup)
 
 // simd 1: the build of the inner loops the CPU runs best (label: which); 0: the portable one.
 // area_rule 0: the speckle filter without its area rule (vision.dense_speckle_min_area_m2 = 0).
+// disparities: vision.dense_num_disparities (a wider search measures nearer surfaces: 0.42 m
+// from the camera at 96 against 0.63 m at 64, docs/results.md).
 void BM_DenseDisparity(benchmark::State& state) {
   core::VisionConfig vision;
   if (state.range(1) == 0) vision.dense_speckle_min_area_m2 = 0.0;
+  vision.dense_num_disparities = static_cast<int>(state.range(2));
   DenseDisparityParams params = dense_params_from_config(vision, core::CameraConfig{}.baseline_m);
   params.allow_simd = state.range(0) != 0;
   DenseDisparityMatcher matcher(params, 640, 480);
@@ -170,10 +173,12 @@ void BM_DenseDisparity(benchmark::State& state) {
   state.SetLabel(matcher.kernels_name());
 }
 BENCHMARK(BM_DenseDisparity)
-    ->Args({1, 1})
-    ->Args({1, 0})
-    ->Args({0, 1})
-    ->ArgNames({"simd", "area_rule"})
+    ->Args({1, 1, 64})
+    ->Args({1, 0, 64})
+    ->Args({0, 1, 64})
+    ->Args({1, 1, 96})
+    ->Args({1, 1, 128})
+    ->ArgNames({"simd", "area_rule", "disparities"})
     ->Unit(benchmark::kMillisecond);
 
 void BM_ObstacleScan(benchmark::State& state) {
