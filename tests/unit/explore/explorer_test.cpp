@@ -1,6 +1,7 @@
 // The exploration behaviour on hand-made grids: replanning, blacklisting, safety stops,
 // the emergency stop, the look around, termination, and no allocation in step().
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -33,6 +34,15 @@ ExploreInput input_at(const GridView& grid, double x, double y, double theta, do
   input.grid = grid;
   input.grid_updated = updated;
   return input;
+}
+
+// How many events of `kind` the explorer's journal holds.
+std::size_t journaled(const Explorer& explorer, ExploreEventKind kind) {
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < explorer.journal().size(); ++i) {
+    if (explorer.journal()[i].kind == kind) ++count;
+  }
+  return count;
 }
 
 ExploreParams no_look_params(int width, int height) {
@@ -138,11 +148,7 @@ TEST(Explorer, APasserByNearAKeptPlanHoldsTheRobotStillForWalkerHoldS) {
     const ExploreOutput after = explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 4.1, false));
     EXPECT_GT(after.drive.linear_mps, 0.0) << ahead;
     EXPECT_EQ(explorer.counters().replans, 0U) << ahead;
-    std::size_t holds_journaled = 0;
-    for (std::size_t i = 0; i < explorer.journal().size(); ++i) {
-      if (explorer.journal()[i].kind == ExploreEventKind::walker_hold) ++holds_journaled;
-    }
-    EXPECT_EQ(holds_journaled, near ? 1U : 0U) << ahead;
+    EXPECT_EQ(journaled(explorer, ExploreEventKind::walker_hold), near ? 1U : 0U) << ahead;
   }
 }
 
@@ -167,13 +173,7 @@ TEST(Explorer, APlanKeptForWalkersIsReplannedOnceTheGoalsWaitIsUsedUp) {
   explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 6.5, true));  // 4.5 s in all
   EXPECT_EQ(explorer.counters().plans_kept_for_walkers, 3U);
   EXPECT_EQ(explorer.counters().replans, 0U);
-  const auto spans_journaled = [&explorer] {
-    std::size_t spans = 0;
-    for (std::size_t i = 0; i < explorer.journal().size(); ++i) {
-      if (explorer.journal()[i].kind == ExploreEventKind::plan_kept) ++spans;
-    }
-    return spans;
-  };
+  const auto spans_journaled = [&explorer] { return journaled(explorer, ExploreEventKind::plan_kept); };
   EXPECT_EQ(spans_journaled(), 2U);  // once at the start of each span
   explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 8.0, true));  // 6 s in all: used up
   EXPECT_EQ(explorer.counters().plans_kept_for_walkers, 3U);
@@ -1014,11 +1014,7 @@ TEST(Explorer, AGoalTakingFarLongerThanItsPlanFailsOnItsTimeLimit) {
     EXPECT_EQ(explorer.counters().goal_timeouts, 1U);
     EXPECT_EQ(explorer.counters().goal_failures, 1U);
     EXPECT_NEAR(t - 0.1, limit_s, 0.15);  // t: one step past the failing one
-    bool journaled = false;
-    for (std::size_t i = 0; i < explorer.journal().size(); ++i) {
-      journaled = journaled || explorer.journal()[i].kind == ExploreEventKind::goal_timeout;
-    }
-    EXPECT_TRUE(journaled);
+    EXPECT_GT(journaled(explorer, ExploreEventKind::goal_timeout), 0U);
   }
 }
 
@@ -1100,11 +1096,7 @@ TEST(Explorer, ARobotGoingBackAndForthBetweenTwoRoutesFailsWithoutNetProgress) {
     EXPECT_EQ(explorer.counters().goal_failures, 1U);
     EXPECT_GT(failed_s, timeout_s);
     EXPECT_LT(failed_s, 120.0);
-    bool journaled = false;
-    for (std::size_t i = 0; i < explorer.journal().size(); ++i) {
-      journaled = journaled || explorer.journal()[i].kind == ExploreEventKind::no_net_progress;
-    }
-    EXPECT_TRUE(journaled);
+    EXPECT_GT(journaled(explorer, ExploreEventKind::no_net_progress), 0U);
   }
 }
 
