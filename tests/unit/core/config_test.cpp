@@ -42,23 +42,36 @@ TEST(Config, ShippedFileLoadsCleanly) {
   EXPECT_EQ(load.config.filter.particles, 1000);
 }
 
-// The 5 cm variant keeps the default's metric sizes: the grid's extent, the lethal margin
+// The 5 cm variants keep the default's metric sizes: the grid's extent, the lethal margin
 // beyond the robot's radius and the goal candidates' lattice.
-TEST(Config, TheFiveCentimetreGridVariantKeepsTheDefaultsMetricSizes) {
-  const SystemConfigLoad load = load_system_config(source_path("config/grid-5cm.yaml"));
+TEST(Config, TheFiveCentimetreGridVariantsKeepTheDefaultsMetricSizes) {
+  for (const char* file : {"config/grid-5cm.yaml", "config/grid-5cm-near.yaml"}) {
+    SCOPED_TRACE(file);
+    const SystemConfigLoad load = load_system_config(source_path(file));
+    ASSERT_TRUE(load.ok()) << load.error_text();
+    const SystemConfig defaults;
+    const SystemConfig& variant = load.config;
+    EXPECT_DOUBLE_EQ(variant.grid.resolution_m, 0.05);
+    EXPECT_DOUBLE_EQ(variant.grid.width_cells * variant.grid.resolution_m,
+                     defaults.grid.width_cells * defaults.grid.resolution_m);
+    EXPECT_DOUBLE_EQ(variant.grid.height_cells * variant.grid.resolution_m,
+                     defaults.grid.height_cells * defaults.grid.resolution_m);
+    EXPECT_DOUBLE_EQ(variant.explore.lethal_margin_cells * variant.grid.resolution_m,
+                     defaults.explore.lethal_margin_cells * defaults.grid.resolution_m);
+    EXPECT_DOUBLE_EQ(variant.explore.candidate_stride_cells * variant.grid.resolution_m,
+                     defaults.explore.candidate_stride_cells * defaults.grid.resolution_m);
+    EXPECT_EQ(variant.filter.particles, defaults.filter.particles);  // the rest is the default's
+  }
+}
+
+// ... and the near variant adds what its runs measured with: far hits weighed by their range
+// and the dense matcher's near range to 0.42 m.
+TEST(Config, TheNearVariantWeighsFarHitsAndSearchesNinetySixDisparities) {
+  const SystemConfigLoad load = load_system_config(source_path("config/grid-5cm-near.yaml"));
   ASSERT_TRUE(load.ok()) << load.error_text();
-  const SystemConfig defaults;
-  const SystemConfig& variant = load.config;
-  EXPECT_DOUBLE_EQ(variant.grid.resolution_m, 0.05);
-  EXPECT_DOUBLE_EQ(variant.grid.width_cells * variant.grid.resolution_m,
-                   defaults.grid.width_cells * defaults.grid.resolution_m);
-  EXPECT_DOUBLE_EQ(variant.grid.height_cells * variant.grid.resolution_m,
-                   defaults.grid.height_cells * defaults.grid.resolution_m);
-  EXPECT_DOUBLE_EQ(variant.explore.lethal_margin_cells * variant.grid.resolution_m,
-                   defaults.explore.lethal_margin_cells * defaults.grid.resolution_m);
-  EXPECT_DOUBLE_EQ(variant.explore.candidate_stride_cells * variant.grid.resolution_m,
-                   defaults.explore.candidate_stride_cells * defaults.grid.resolution_m);
-  EXPECT_EQ(variant.filter.particles, defaults.filter.particles);  // the rest is the default's
+  EXPECT_DOUBLE_EQ(load.config.grid.hit_full_weight_range_m, 3.0);
+  EXPECT_EQ(load.config.vision.dense_num_disparities, 96);
+  EXPECT_EQ(load.config.vision.max_features, SystemConfig{}.vision.max_features);
 }
 
 TEST(Config, ValuesOverrideDefaultsAndOmittedKeysKeepThem) {
