@@ -260,7 +260,11 @@ double ParticleFilter::observe(Particle& particle, const PlanarTransform& map_fr
   Innovation best_innovation;
   best_innovation.distance_squared = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < leaf->estimates.size(); ++i) {
-    const Innovation candidate = innovation(landmarks_.estimate(leaf->estimates[i]), seen);
+    const LandmarkEstimate& estimate = landmarks_.estimate(leaf->estimates[i]);
+    const Innovation candidate =
+        config_.predicted_range_exponent > 0.0
+            ? innovation(estimate, at_predicted_range(seen, estimate.mean, config_.predicted_range_exponent))
+            : innovation(estimate, seen);
     if (candidate.distance_squared < best_innovation.distance_squared) {
       best_innovation = candidate;
       best = i;

@@ -26,12 +26,14 @@ struct RobotFrameObservation {
   std::uint32_t landmark_id = 0;
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   SymmetricMatrix3 covariance;
+  Eigen::Vector3d sensor_origin = Eigen::Vector3d::Zero();  // where it was measured from
 };
 
 // The same observation in the map frame of one particle.
 struct MapFrameObservation {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   SymmetricMatrix3 covariance;
+  Eigen::Vector3d sensor_origin = Eigen::Vector3d::Zero();
 };
 
 RobotFrameObservation to_robot_frame(const core::LandmarkObservation& observation,
@@ -47,6 +49,14 @@ struct PlanarTransform {
 // Moves the point and rotates the covariance (R C R^T) about z; the closed form of the
 // planar rotation touches only the entries it changes.
 MapFrameObservation to_map_frame(const RobotFrameObservation& observation, const PlanarTransform& map_from_robot);
+
+// The observation with its covariance taken at `predicted` instead of at the measured point:
+// scaled by (|predicted - origin| / |point - origin|)^exponent (filter.predicted_range_exponent).
+// A point measured farther or nearer than it is then weighs as it would at its true range, so
+// the weight no longer grows with the measurement's own error. Unchanged when either range is
+// not positive and finite.
+MapFrameObservation at_predicted_range(const MapFrameObservation& observation, const Eigen::Vector3d& predicted,
+                                       double exponent);
 
 // A range/bearing measurement on the floor plane turned into a point observation in the
 // sensor frame (x forward, y left, z up): p = (r cos b, r sin b, 0), covariance J S J^T with
