@@ -6,8 +6,8 @@
 // in almost every column.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <vector>
 
@@ -371,7 +371,7 @@ TEST_F(SimulatedClutterGapViewsWithoutTheAreaRule, LookAlikeBookSpinesStandAsPha
 // The stereo matches the filter triangulates, on rendered views of the lab, against the
 // rendering's depth where the surface is smooth (no depth edge within 2 px). A landmark's
 // depth from one match is nearly unbiased: the median disparity error is about 0.001 px and
-// the mean relative depth error of the matches within 1.5 px of the truth 0.2-0.3 %.
+// the mean relative depth error of the matches within 1.5 px of the truth +0.15 to +0.35 %.
 // What is biased is fusing them as the filter does, each weighed by the inverse of its
 // covariance taken at its measured disparity (depth variance ~ 1 / d^4): nearer-measured
 // matches count more, and the fused depth comes out none short within 4 m, 0.5 % at 4-8 m and
