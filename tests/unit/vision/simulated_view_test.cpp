@@ -375,7 +375,7 @@ TEST_F(SimulatedClutterGapViewsWithoutTheAreaRule, LookAlikeBookSpinesStandAsPha
 // What is biased is fusing them as the filter does, each weighed by the inverse of its
 // covariance taken at its measured disparity (depth variance ~ 1 / d^4): nearer-measured
 // matches count more, and the fused depth comes out none short within 4 m, 0.5 % at 4-8 m and
-// 2 % beyond 8 m (docs/results.md, sixty-third session: every run's trajectory is 0.7-2 % smaller
+// 2 % beyond 8 m (docs/results.md, sixty-third session: every run's trajectory is about 1 % smaller
 // than the truth). This test checks the first and prints the second.
 TEST_F(SimulatedLabView, SparseStereoDepthsAreUnbiasedButInverseVarianceFusionIsShort) {
   const double focal_baseline = calibration_.focal_px * calibration_.baseline_m;
