@@ -117,6 +117,8 @@ BENCHMARK(BM_ObservationUpdate)
 // A run in progress: consecutive updates, each with 200 observations of a new random subset of
 // the K landmarks, motion noise on and systematic resampling whenever ESS < N / 2, starting from
 // one shared map. The time is for all 10 updates; counters: what the trees hold at the end.
+// range_exponent: filter.predicted_range_exponent (0 off; 3 scales each innovation's
+// observation covariance to the estimate's range first).
 void BM_ConsecutiveUpdates(benchmark::State& state) {
   const auto particles = static_cast<std::size_t>(state.range(0));
   const auto landmarks = static_cast<std::size_t>(state.range(1));
@@ -134,6 +136,7 @@ void BM_ConsecutiveUpdates(benchmark::State& state) {
   core::FilterConfig config;
   config.particles = static_cast<int>(particles);
   config.particle_capacity = config.particles;
+  config.predicted_range_exponent = static_cast<double>(state.range(2));
   config.landmark_node_capacity =
       static_cast<int>(2 * landmarks + kUpdates * particles * path_nodes_per_update(landmarks) + 1000);
   config.landmark_estimate_capacity = static_cast<int>(landmarks + kUpdates * particles * kObservationsPerUpdate + 1000);
@@ -165,8 +168,10 @@ void BM_ConsecutiveUpdates(benchmark::State& state) {
   state.counters["refused"] = static_cast<double>(filter.counters().changes_refused_pool_full);
 }
 BENCHMARK(BM_ConsecutiveUpdates)
-    ->Args({1000, 10000})
-    ->Args({2000, 10000})
+    ->Args({1000, 10000, 0})
+    ->Args({2000, 10000, 0})
+    ->Args({1000, 10000, 3})
+    ->ArgNames({"particles", "landmarks", "range_exponent"})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(2);
 
