@@ -55,6 +55,49 @@ MapFrameObservation at_predicted_range(const MapFrameObservation& observation, c
   return moved;
 }
 
+StereoModel stereo_model_from_config(const core::CameraConfig& camera, const core::VisionConfig& vision) {
+  return StereoModel{camera.focal_px,  camera.principal_x_px, camera.principal_y_px, camera.baseline_m,
+                     vision.sigma_u_px, vision.sigma_v_px,     vision.sigma_d_px};
+}
+
+Eigen::Vector3d project(const StereoModel& stereo, const Eigen::Vector3d& point_camera) {
+  const double inverse_depth = 1.0 / point_camera.z();
+  return {stereo.focal_px * point_camera.x() * inverse_depth + stereo.principal_x_px,
+          stereo.focal_px * point_camera.y() * inverse_depth + stereo.principal_y_px,
+          stereo.focal_px * stereo.baseline_m * inverse_depth};
+}
+
+MapFromSensor map_from_sensor(const PlanarTransform& map_from_robot, const Eigen::Isometry3d& robot_from_sensor) {
+  Eigen::Matrix3d turn;
+  turn << map_from_robot.cosine, -map_from_robot.sine, 0.0, map_from_robot.sine, map_from_robot.cosine, 0.0, 0.0, 0.0,
+      1.0;
+  MapFromSensor sensor;
+  sensor.rotation = turn * robot_from_sensor.linear();
+  sensor.translation = turn * robot_from_sensor.translation() + map_from_robot.translation;
+  return sensor;
+}
+
+bool at_estimate(const StereoModel& stereo, const Eigen::Vector3d& measured_pixel, const Eigen::Vector3d& estimate_mean,
+                 const MapFromSensor& sensor, MapFrameObservation& linearised) {
+  const Eigen::Vector3d p = sensor.rotation.transpose() * (estimate_mean - sensor.translation);
+  if (!(p.z() > 0.0)) return false;
+  const Eigen::Vector3d predicted = project(stereo, p);
+  const double u = predicted.x() - stereo.principal_x_px;
+  const double v = predicted.y() - stereo.principal_y_px;
+  const double b_over_d = stereo.baseline_m / predicted.z();
+  const double b_over_d2 = b_over_d / predicted.z();
+  // Eq. 4's Jacobian of eq. 3, at the predicted (u, v, d).
+  Eigen::Matrix3d jacobian;
+  jacobian << b_over_d, 0.0, -u * b_over_d2, 0.0, b_over_d, -v * b_over_d2, 0.0, 0.0, -stereo.focal_px * b_over_d2;
+  const Eigen::Matrix3d map_jacobian = sensor.rotation * jacobian;
+  const Eigen::Vector3d variances(stereo.sigma_u_px * stereo.sigma_u_px, stereo.sigma_v_px * stereo.sigma_v_px,
+                                  stereo.sigma_d_px * stereo.sigma_d_px);
+  linearised.point = estimate_mean + map_jacobian * (measured_pixel - predicted);
+  linearised.covariance = core::symmetrize(map_jacobian * variances.asDiagonal() * map_jacobian.transpose());
+  linearised.sensor_origin = sensor.translation;
+  return true;
+}
+
 core::LandmarkObservation range_bearing_observation(std::uint32_t landmark_id, double range_m, double bearing_rad,
                                                     double range_sigma_m, double bearing_sigma_rad,
                                                     double height_sigma_m) {

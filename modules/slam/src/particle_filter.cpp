@@ -30,9 +30,11 @@ void sort_by_landmark_id(core::FixedVector<RobotFrameObservation>& observations)
 }  // namespace
 
 ParticleFilter::ParticleFilter(const core::FilterConfig& config, const core::CameraMount& camera_mount,
-                               std::uint64_t seed)
+                               std::uint64_t seed, const StereoModel* stereo)
     : config_(config),
       camera_mount_(camera_mount),
+      stereo_(stereo != nullptr ? *stereo : StereoModel{}),
+      linearise_at_estimate_(config.linearise_at_estimate && stereo != nullptr),
       seed_(seed),
       motion_noise_(motion_noise_from_config(config)),
       landmarks_(to_size(config.landmark_node_capacity), to_size(config.landmark_estimate_capacity)),
@@ -159,9 +161,11 @@ UpdateResult ParticleFilter::update(const core::OdometryReading& odometry, Obser
   const double weight_scale = observation_weight_scale(used);
   for (Particle& p : *particles_) {
     const PlanarTransform map_from_robot(p.pose);
+    const MapFromSensor sensor =
+        linearise_at_estimate_ ? map_from_sensor(map_from_robot, robot_from_sensor_) : MapFromSensor{};
     double log_likelihood = 0.0;
     for (std::size_t k = 0; k < used; ++k) {
-      log_likelihood += observe(p, map_from_robot, observations_[k]);
+      log_likelihood += observe(p, map_from_robot, sensor, observations_[k]);
     }
     p.log_weight += weight_scale * log_likelihood;
   }
@@ -215,6 +219,7 @@ void ParticleFilter::predict(const core::Pose2& motion) {
 std::size_t ParticleFilter::prepare_observations(ObservationList observations,
                                                  const Eigen::Isometry3d& robot_from_sensor) {
   observations_.clear();
+  robot_from_sensor_ = robot_from_sensor;
   for (std::size_t k = 0; k < observations.size; ++k) {
     const core::LandmarkObservation& observation = observations.data[k];
     if (!is_valid_observation(observation)) {
@@ -225,7 +230,8 @@ std::size_t ParticleFilter::prepare_observations(ObservationList observations,
       ++counters_.observations_dropped_overflow;
       continue;
     }
-    observations_.push_back(to_robot_frame(observation, robot_from_sensor));
+    RobotFrameObservation* added = observations_.emplace_back(to_robot_frame(observation, robot_from_sensor));
+    if (linearise_at_estimate_) added->measured_pixel = project(stereo_, observation.point_camera);
     ++counters_.observations_used;
   }
   sort_by_landmark_id(observations_);
@@ -241,7 +247,7 @@ double ParticleFilter::observation_weight_scale(std::size_t used) {
 
 // Paper Algorithm 1 for one particle and one observation; returns its log-likelihood (eq. 7,
 // the constant k dropped: it is the same for every particle).
-double ParticleFilter::observe(Particle& particle, const PlanarTransform& map_from_robot,
+double ParticleFilter::observe(Particle& particle, const PlanarTransform& map_from_robot, const MapFromSensor& sensor,
                                const RobotFrameObservation& observation) {
   const MapFrameObservation seen = to_map_frame(observation, map_from_robot);
   const MapNode* leaf = landmarks_.find_leaf(particle.map, observation.landmark_id);
@@ -261,8 +267,11 @@ double ParticleFilter::observe(Particle& particle, const PlanarTransform& map_fr
   best_innovation.distance_squared = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < leaf->estimates.size(); ++i) {
     const LandmarkEstimate& estimate = landmarks_.estimate(leaf->estimates[i]);
+    MapFrameObservation linearised;
     const Innovation candidate =
-        config_.predicted_range_exponent > 0.0
+        linearise_at_estimate_ && at_estimate(stereo_, observation.measured_pixel, estimate.mean, sensor, linearised)
+            ? innovation(estimate, linearised)
+        : config_.predicted_range_exponent > 0.0
             ? innovation(estimate, at_predicted_range(seen, estimate.mean, config_.predicted_range_exponent))
             : innovation(estimate, seen);
     if (candidate.distance_squared < best_innovation.distance_squared) {

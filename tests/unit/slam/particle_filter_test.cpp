@@ -563,6 +563,104 @@ TEST(ObservationModel, TheCovarianceAtThePredictedRangeFusesStereoRangesWithoutT
   EXPECT_GT(exponent_4, 0.003);
 }
 
+// The same landmark, 6 m straight ahead of a camera at the map's origin, seen 40 times with
+// 0.5 px of disparity noise (and 10 px in u, v: paper's numbers), fused by the EKF either at
+// each measured point with its covariance there, or linearised at the estimate (at_estimate):
+// the first is short by about 2.5 %, the second within 0.3 %.
+double mean_fused_range_error_of(bool linearise) {
+  const StereoModel stereo{400.0, 320.0, 240.0, 0.1, 10.0, 10.0, 0.5};
+  constexpr double kRange_m = 6.0;
+  const MapFromSensor camera;  // the camera frame is the map frame
+  core::RandomStream noise(7, {core::stream_purpose::test, 1, 0});
+  auto measure = [&]() {
+    return Eigen::Vector3d(stereo.principal_x_px + noise.gaussian(0.0, stereo.sigma_u_px),
+                           stereo.principal_y_px + noise.gaussian(0.0, stereo.sigma_v_px),
+                           stereo.focal_px * stereo.baseline_m / kRange_m + noise.gaussian(0.0, stereo.sigma_d_px));
+  };
+  auto at_measurement = [&](const Eigen::Vector3d& pixel) {
+    const double b_over_d = stereo.baseline_m / pixel.z(), b_over_d2 = b_over_d / pixel.z();
+    const double u = pixel.x() - stereo.principal_x_px, v = pixel.y() - stereo.principal_y_px;
+    Eigen::Matrix3d jacobian;
+    jacobian << b_over_d, 0.0, -u * b_over_d2, 0.0, b_over_d, -v * b_over_d2, 0.0, 0.0, -stereo.focal_px * b_over_d2;
+    MapFrameObservation seen;
+    seen.point = Eigen::Vector3d(u * b_over_d, v * b_over_d, stereo.focal_px * b_over_d);
+    seen.covariance = core::symmetrize(
+        jacobian * Eigen::Vector3d(100.0, 100.0, 0.25).asDiagonal() * jacobian.transpose());
+    return seen;
+  };
+  double error_sum = 0.0;
+  constexpr int kLandmarks = 400;
+  for (int landmark = 0; landmark < kLandmarks; ++landmark) {
+    const MapFrameObservation first = at_measurement(measure());
+    LandmarkEstimate estimate{first.point, first.covariance, 1};
+    for (int sighting = 1; sighting < 40; ++sighting) {
+      const Eigen::Vector3d pixel = measure();
+      MapFrameObservation seen = at_measurement(pixel);
+      if (linearise) {
+        EXPECT_TRUE(at_estimate(stereo, pixel, estimate.mean, camera, seen));
+      }
+      ekf_update(estimate, innovation(estimate, seen));
+    }
+    error_sum += estimate.mean.z() - kRange_m;
+  }
+  return error_sum / kLandmarks / kRange_m;
+}
+
+TEST(ObservationModel, LinearisedAtTheEstimateStereoRangesFuseWithoutTheShortfall) {
+  const double at_measurement = mean_fused_range_error_of(false);
+  const double linearised = mean_fused_range_error_of(true);
+  std::printf("fused range error: %.2f %% at the measurement, %.2f %% linearised at the estimate\n",
+              100.0 * at_measurement, 100.0 * linearised);
+  EXPECT_LT(at_measurement, -0.01);
+  EXPECT_LT(std::abs(linearised), 0.003);
+}
+
+// at_estimate is the EKF in (u, v, d): the same Mahalanobis distance and the same update as
+// with H = dproject/dp R^T and S = H P H^T + diag(sigma^2), written out here.
+TEST(ObservationModel, AtEstimateIsTheEkfInPixelCoordinates) {
+  const StereoModel stereo{400.0, 319.5, 239.5, 0.12, 2.0, 3.0, 0.4};
+  core::CameraMount mount{0.1, 0.02, 0.6, 0.0};
+  const Eigen::Isometry3d robot_from_camera = core::robot_from_camera(mount, 0.4);
+  const core::Pose2 pose{1.0, -2.0, 0.7};
+  const MapFromSensor sensor = map_from_sensor(PlanarTransform(pose), robot_from_camera);
+  const Eigen::Isometry3d map_from_camera = pose.to_isometry3() * robot_from_camera;
+  EXPECT_TRUE(sensor.rotation.isApprox(map_from_camera.linear(), 1e-12));
+  EXPECT_TRUE(sensor.translation.isApprox(map_from_camera.translation(), 1e-12));
+  LandmarkEstimate estimate;
+  estimate.mean = map_from_camera * Eigen::Vector3d(0.8, -0.3, 5.0);
+  estimate.covariance = SymmetricMatrix3(0.09, 0.01, 0.002, 0.04, -0.003, 0.02);
+  const Eigen::Vector3d measured = project(stereo, Eigen::Vector3d(0.9, -0.25, 4.6));
+
+  MapFrameObservation linearised;
+  ASSERT_TRUE(at_estimate(stereo, measured, estimate.mean, sensor, linearised));
+  const Innovation ours = innovation(estimate, linearised);
+  LandmarkEstimate updated = estimate;
+  ekf_update(updated, ours);
+
+  const Eigen::Vector3d p = map_from_camera.inverse() * estimate.mean;
+  Eigen::Matrix3d projection_jacobian;
+  const double f = stereo.focal_px, z = p.z();
+  projection_jacobian << f / z, 0.0, -f * p.x() / (z * z), 0.0, f / z, -f * p.y() / (z * z), 0.0, 0.0,
+      -f * stereo.baseline_m / (z * z);
+  const Eigen::Matrix3d h = projection_jacobian * map_from_camera.linear().transpose();
+  const Eigen::Matrix3d pixel_noise =
+      Eigen::Vector3d(4.0, 9.0, 0.16).asDiagonal();
+  const Eigen::Matrix3d prior = estimate.covariance.full();
+  const Eigen::Matrix3d s = h * prior * h.transpose() + pixel_noise;
+  const Eigen::Vector3d residual = measured - project(stereo, p);
+  const Eigen::Matrix3d gain = prior * h.transpose() * s.inverse();
+  EXPECT_NEAR(ours.distance_squared, residual.dot(s.inverse() * residual), 1e-9);
+  EXPECT_TRUE(updated.mean.isApprox(estimate.mean + gain * residual, 1e-9));
+  EXPECT_TRUE(updated.covariance.full().isApprox((Eigen::Matrix3d::Identity() - gain * h) * prior, 1e-9));
+}
+
+TEST(ObservationModel, AtEstimateRefusesAnEstimateBehindTheCamera) {
+  const StereoModel stereo{400.0, 319.5, 239.5, 0.1, 10.0, 10.0, 0.5};
+  MapFrameObservation linearised;
+  EXPECT_FALSE(at_estimate(stereo, Eigen::Vector3d(320.0, 240.0, 8.0), Eigen::Vector3d(0.0, 0.0, -2.0),
+                           MapFromSensor{}, linearised));
+}
+
 TEST(ObservationModel, AtPredictedRangeScalesTheCovarianceByTheRangeRatio) {
   MapFrameObservation seen;
   seen.sensor_origin = Eigen::Vector3d(1.0, 0.0, 0.5);
@@ -594,6 +692,72 @@ TEST(ObservationModel, TheSensorOriginFollowsTheObservationIntoTheMapFrame) {
 
 namespace stereoscout::slam {
 namespace {
+
+// A 30 m drive down a corridor whose walls (1.5 m to either side) and end walls carry a
+// landmark every 0.25 m, with exact odometry, 50 particles and the paper's motion noise. The
+// camera's disparities have 0.3 px of noise (the matcher's on the simulator's rendered lab),
+// u and v 0.3 px; the filter's model is the paper's (10, 10, 0.5 px). Compared at their
+// measured points, nearer-measured sightings weigh more (C ~ 1 / d^4 along the ray), every
+// landmark is mapped a little short of the robot that saw it, the next pose is placed against
+// them, and the drive comes out about 1.5 % short: the whole stack's every trajectory was
+// about 1 % small. Linearised at the estimate (filter.linearise_at_estimate) it keeps its length.
+double corridor_drive_scale(bool linearise) {
+  core::FilterConfig config = small_config(50);
+  config.linearise_at_estimate = linearise;
+  config.max_observations_per_update = 1000;
+  const StereoModel stereo{400.0, 319.5, 239.5, 0.1, 10.0, 10.0, 0.5};
+  const core::CameraMount mount{0.1, 0.0, 0.6, 0.0};
+  ParticleFilter filter(config, mount, 5, &stereo);
+  std::vector<Eigen::Vector3d> landmarks;
+  core::RandomStream heights(3, {core::stream_purpose::test, 1, 0});
+  for (double x = -3.0; x <= 33.0; x += 0.25) {
+    landmarks.emplace_back(x, 1.5, heights.uniform(0.1, 2.2));
+    landmarks.emplace_back(x, -1.5, heights.uniform(0.1, 2.2));
+  }
+  for (double y = -1.5; y <= 1.5; y += 0.25) {
+    landmarks.emplace_back(33.0, y, heights.uniform(0.1, 2.2));
+    landmarks.emplace_back(-3.0, y, heights.uniform(0.1, 2.2));
+  }
+  core::RandomStream noise(4, {core::stream_purpose::test, 2, 0});
+  constexpr double kActualPixelNoise = 0.3;
+  core::OdometryReading odometry;
+  filter.start(odometry);
+  std::vector<core::LandmarkObservation> observations;
+  for (int step = 1; step <= 500; ++step) {
+    odometry = odometry_at(step, core::Pose2{0.06 * step, 0.0, 0.0});
+    const Eigen::Isometry3d camera_from_map =
+        (odometry.pose.to_isometry3() * core::robot_from_camera(mount, 0.0)).inverse();
+    observations.clear();
+    for (std::uint32_t id = 0; id < landmarks.size(); ++id) {
+      const Eigen::Vector3d point = camera_from_map * landmarks[id];
+      if (point.z() < 0.3) continue;
+      Eigen::Vector3d pixel = project(stereo, point);
+      if (pixel.x() < 0.0 || pixel.x() > 639.0 || pixel.y() < 0.0 || pixel.y() > 479.0) continue;
+      for (int axis = 0; axis < 3; ++axis) pixel[axis] += noise.gaussian(0.0, kActualPixelNoise);
+      if (pixel.z() < 1.0) continue;
+      const double b_over_d = stereo.baseline_m / pixel.z(), b_over_d2 = b_over_d / pixel.z();
+      const double u = pixel.x() - stereo.principal_x_px, v = pixel.y() - stereo.principal_y_px;
+      Eigen::Matrix3d jacobian;
+      jacobian << b_over_d, 0.0, -u * b_over_d2, 0.0, b_over_d, -v * b_over_d2, 0.0, 0.0, -stereo.focal_px * b_over_d2;
+      core::LandmarkObservation o;
+      o.landmark_id = id;
+      o.point_camera = Eigen::Vector3d(u * b_over_d, v * b_over_d, stereo.focal_px * b_over_d);
+      o.covariance = jacobian * Eigen::Vector3d(100.0, 100.0, 0.25).asDiagonal() * jacobian.transpose();
+      observations.push_back(o);
+    }
+    if (!filter.update(odometry, as_list(observations), 0.0).status.ok()) return 0.0;
+  }
+  return filter.estimate_pose().x / odometry.pose.x;
+}
+
+TEST(ParticleFilter, LinearisedAtTheEstimateAStraightDriveKeepsItsLength) {
+  const double at_measurement = corridor_drive_scale(false);
+  const double linearised = corridor_drive_scale(true);
+  std::printf("30 m drive comes out %.4f of its length at the measurement, %.4f linearised at the estimate\n",
+              at_measurement, linearised);
+  EXPECT_LT(at_measurement, 0.99);
+  EXPECT_NEAR(linearised, 1.0, 0.004);
+}
 
 TEST(ParticleFilter, APriorMapIsBuiltOnceAndSharedByEveryParticle) {
   ParticleFilter filter(small_config(50), core::CameraMount{}, 2);

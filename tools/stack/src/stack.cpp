@@ -120,8 +120,9 @@ Stack::Stack(const core::SystemConfig& config, const StackOptions& options, cons
   vision_->allocate_scan(seen_scan_);
   if (config.vision.scan_parallel) scan_worker_ = std::make_unique<core::Worker>();
   wall_params_ = slam::wall_line_params_from_config(config.filter);
+  const slam::StereoModel stereo = slam::stereo_model_from_config(config.camera, config.vision);
   filter_ = std::make_unique<slam::ParticleFilter>(filter_config_for(config.filter, options.localization), mount_,
-                                                   static_cast<std::uint64_t>(config.run.seed));
+                                                   static_cast<std::uint64_t>(config.run.seed), &stereo);
   capture_frame_.allocate(config.camera.width_px, config.camera.height_px);
   kept_frame_.allocate(config.camera.width_px, config.camera.height_px);
   core::ExploreConfig explore = config.explore;

@@ -11,6 +11,7 @@
 #include <Eigen/Geometry>
 
 #include "stereoscout/core/config/camera.hpp"
+#include "stereoscout/core/config/vision.hpp"
 #include "stereoscout/core/geometry.hpp"
 #include "stereoscout/core/messages.hpp"
 #include "stereoscout/slam/landmark_map.hpp"
@@ -27,6 +28,7 @@ struct RobotFrameObservation {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   SymmetricMatrix3 covariance;
   Eigen::Vector3d sensor_origin = Eigen::Vector3d::Zero();  // where it was measured from
+  Eigen::Vector3d measured_pixel = Eigen::Vector3d::Zero();  // (u, v, d) with a StereoModel
 };
 
 // The same observation in the map frame of one particle.
@@ -57,6 +59,40 @@ MapFrameObservation to_map_frame(const RobotFrameObservation& observation, const
 // not positive and finite.
 MapFrameObservation at_predicted_range(const MapFrameObservation& observation, const Eigen::Vector3d& predicted,
                                        double exponent);
+
+// The stereo camera as a measurement model: a point p of the camera frame is seen at
+// (u, v, d) = (f x / z + cx, f y / z + cy, f B / z) in the right image, with independent
+// noise sigma_u, sigma_v, sigma_d (paper eq. 3 inverted; the noise of eq. 4).
+struct StereoModel {
+  double focal_px = 0.0;
+  double principal_x_px = 0.0;
+  double principal_y_px = 0.0;
+  double baseline_m = 0.0;
+  double sigma_u_px = 0.0;
+  double sigma_v_px = 0.0;
+  double sigma_d_px = 0.0;
+};
+StereoModel stereo_model_from_config(const core::CameraConfig& camera, const core::VisionConfig& vision);
+Eigen::Vector3d project(const StereoModel& stereo, const Eigen::Vector3d& point_camera);
+
+// Where one particle puts the sensor: its rotation and origin in the map frame.
+struct MapFromSensor {
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+};
+MapFromSensor map_from_sensor(const PlanarTransform& map_from_robot, const Eigen::Isometry3d& robot_from_sensor);
+
+// The stereo observation linearised at the estimate (the textbook EKF, filter.linearise_at_estimate):
+// with p the estimate's mean in the camera frame and J the Jacobian of eq. 3 at project(p),
+// the innovation J (measured - project(p)) with covariance J S J^T, both moved into the map
+// frame and returned as an observation at mean + innovation. An EKF in (u, v, d) with
+// H = dproject/dp is the same update, because J is the inverse of dproject/dp: the Mahalanobis
+// distance and the gain are unchanged by the invertible change of coordinates. The
+// covariance is the one at the estimate, not at the noisy measurement, so a sighting measured
+// too near no longer counts more than one measured too far. False when the estimate is not in
+// front of the camera (then the caller keeps the observation at the measurement).
+bool at_estimate(const StereoModel& stereo, const Eigen::Vector3d& measured_pixel, const Eigen::Vector3d& estimate_mean,
+                 const MapFromSensor& sensor, MapFrameObservation& linearised);
 
 // A range/bearing measurement on the floor plane turned into a point observation in the
 // sensor frame (x forward, y left, z up): p = (r cos b, r sin b, 0), covariance J S J^T with

@@ -90,7 +90,10 @@ struct UpdateResult {
 
 class ParticleFilter {
  public:
-  ParticleFilter(const core::FilterConfig& config, const core::CameraMount& camera_mount, std::uint64_t seed);
+  // `stereo`: the camera's measurement model, needed by filter.linearise_at_estimate (without
+  // it every observation is compared at its measured point).
+  ParticleFilter(const core::FilterConfig& config, const core::CameraMount& camera_mount, std::uint64_t seed,
+                 const StereoModel* stereo = nullptr);
   ~ParticleFilter();
 
   ParticleFilter(const ParticleFilter&) = delete;
@@ -157,7 +160,8 @@ class ParticleFilter {
   double observation_weight_scale(std::size_t used);
   // Step 3a: learns the building's axes from `wall`, or weighs the particles by it.
   void weigh_by_wall(const WallLine& wall);
-  double observe(Particle& particle, const PlanarTransform& map_from_robot, const RobotFrameObservation& observation);
+  double observe(Particle& particle, const PlanarTransform& map_from_robot, const MapFromSensor& sensor,
+                 const RobotFrameObservation& observation);
   void extend_trajectories(std::int64_t timestamp_ns);
   void normalise_weights();
   std::size_t best_slot() const;
@@ -170,6 +174,9 @@ class ParticleFilter {
 
   core::FilterConfig config_;
   core::CameraMount camera_mount_;
+  StereoModel stereo_;
+  bool linearise_at_estimate_ = false;  // filter.linearise_at_estimate with a StereoModel
+  Eigen::Isometry3d robot_from_sensor_ = Eigen::Isometry3d::Identity();  // of this update
   std::uint64_t seed_;
   MotionNoise motion_noise_;
   LandmarkStore landmarks_;
