@@ -95,7 +95,11 @@ RunResult run_kitti_slam(const host_dataset::KittiSequence& sequence, const RunO
   auto front_end = std::make_unique<vision::VisionFrontEnd>(options.vision, core::RobotConfig{},
                                                             stereo_calibration(sequence.calibration), mount);
   front_end->set_stopwatch(&stopwatch);
-  auto filter = std::make_unique<slam::ParticleFilter>(options.filter, mount, options.seed);
+  const slam::StereoModel stereo{sequence.calibration.focal_px, sequence.calibration.principal_x_px,
+                                 sequence.calibration.principal_y_px, sequence.calibration.baseline_m,
+                                 options.vision.sigma_u_px,        options.vision.sigma_v_px,
+                                 options.vision.sigma_d_px};
+  auto filter = std::make_unique<slam::ParticleFilter>(options.filter, mount, options.seed, &stereo);
   core::FixedVector<core::LandmarkObservation> observations(front_end->max_observations());
   core::StereoFrame frame;
   frame.allocate(sequence.calibration.width_px, sequence.calibration.height_px);

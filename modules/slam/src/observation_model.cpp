@@ -16,7 +16,6 @@ RobotFrameObservation to_robot_frame(const core::LandmarkObservation& observatio
   moved.landmark_id = observation.landmark_id;
   moved.point = robot_from_sensor * observation.point_camera;
   moved.covariance = core::symmetrize(core::rotate_covariance(robot_from_sensor.linear(), observation.covariance));
-  moved.sensor_origin = robot_from_sensor.translation();
   return moved;
 }
 
@@ -37,21 +36,6 @@ MapFrameObservation to_map_frame(const RobotFrameObservation& observation, const
   const double b11 = s * q.xy + c * q.yy;
   moved.covariance = SymmetricMatrix3(b00 * c - b01 * s, b00 * s + b01 * c, c * q.xz - s * q.yz,
                                       b10 * s + b11 * c, s * q.xz + c * q.yz, q.zz);
-  const Eigen::Vector3d& o = observation.sensor_origin;
-  moved.sensor_origin = Eigen::Vector3d(c * o.x() - s * o.y(), s * o.x() + c * o.y(), o.z()) + map_from_robot.translation;
-  return moved;
-}
-
-MapFrameObservation at_predicted_range(const MapFrameObservation& observation, const Eigen::Vector3d& predicted,
-                                       double exponent) {
-  const double measured_range = (observation.point - observation.sensor_origin).norm();
-  const double predicted_range = (predicted - observation.sensor_origin).norm();
-  const double ratio = predicted_range / measured_range;
-  if (!(measured_range > 0.0) || !(predicted_range > 0.0) || !std::isfinite(ratio)) return observation;
-  const double scale = std::pow(ratio, exponent);
-  MapFrameObservation moved = observation;
-  const SymmetricMatrix3& q = observation.covariance;
-  moved.covariance = SymmetricMatrix3(scale * q.xx, scale * q.xy, scale * q.xz, scale * q.yy, scale * q.yz, scale * q.zz);
   return moved;
 }
 
@@ -94,7 +78,6 @@ bool at_estimate(const StereoModel& stereo, const Eigen::Vector3d& measured_pixe
                                   stereo.sigma_d_px * stereo.sigma_d_px);
   linearised.point = estimate_mean + map_jacobian * (measured_pixel - predicted);
   linearised.covariance = core::symmetrize(map_jacobian * variances.asDiagonal() * map_jacobian.transpose());
-  linearised.sensor_origin = sensor.translation;
   return true;
 }
 

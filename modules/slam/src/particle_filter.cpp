@@ -271,8 +271,6 @@ double ParticleFilter::observe(Particle& particle, const PlanarTransform& map_fr
     const Innovation candidate =
         linearise_at_estimate_ && at_estimate(stereo_, observation.measured_pixel, estimate.mean, sensor, linearised)
             ? innovation(estimate, linearised)
-        : config_.predicted_range_exponent > 0.0
-            ? innovation(estimate, at_predicted_range(seen, estimate.mean, config_.predicted_range_exponent))
             : innovation(estimate, seen);
     if (candidate.distance_squared < best_innovation.distance_squared) {
       best_innovation = candidate;

@@ -27,7 +27,6 @@ struct RobotFrameObservation {
   std::uint32_t landmark_id = 0;
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   SymmetricMatrix3 covariance;
-  Eigen::Vector3d sensor_origin = Eigen::Vector3d::Zero();  // where it was measured from
   Eigen::Vector3d measured_pixel = Eigen::Vector3d::Zero();  // (u, v, d) with a StereoModel
 };
 
@@ -35,7 +34,6 @@ struct RobotFrameObservation {
 struct MapFrameObservation {
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   SymmetricMatrix3 covariance;
-  Eigen::Vector3d sensor_origin = Eigen::Vector3d::Zero();
 };
 
 RobotFrameObservation to_robot_frame(const core::LandmarkObservation& observation,
@@ -51,14 +49,6 @@ struct PlanarTransform {
 // Moves the point and rotates the covariance (R C R^T) about z; the closed form of the
 // planar rotation touches only the entries it changes.
 MapFrameObservation to_map_frame(const RobotFrameObservation& observation, const PlanarTransform& map_from_robot);
-
-// The observation with its covariance taken at `predicted` instead of at the measured point:
-// scaled by (|predicted - origin| / |point - origin|)^exponent (filter.predicted_range_exponent).
-// A point measured farther or nearer than it is then weighs as it would at its true range, so
-// the weight no longer grows with the measurement's own error. Unchanged when either range is
-// not positive and finite.
-MapFrameObservation at_predicted_range(const MapFrameObservation& observation, const Eigen::Vector3d& predicted,
-                                       double exponent);
 
 // The stereo camera as a measurement model: a point p of the camera frame is seen at
 // (u, v, d) = (f x / z + cx, f y / z + cy, f B / z) in the right image, with independent
