@@ -69,6 +69,17 @@ Eigen::Isometry3d robot_from_camera(const CameraMount& mount, double pan_rad) {
   return transform;
 }
 
+Eigen::Matrix3d stereo_triangulation_jacobian(double focal_px, double baseline_m, double u_px, double v_px,
+                                              double disparity_px) {
+  const double b_over_d = baseline_m / disparity_px;
+  const double b_over_d2 = b_over_d / disparity_px;
+  Eigen::Matrix3d jacobian;
+  jacobian << b_over_d, 0.0, -u_px * b_over_d2,  //
+      0.0, b_over_d, -v_px * b_over_d2,          //
+      0.0, 0.0, -focal_px * b_over_d2;
+  return jacobian;
+}
+
 Eigen::Matrix3d symmetrize(const Eigen::Matrix3d& covariance) {
   return 0.5 * (covariance + covariance.transpose());
 }

@@ -66,14 +66,10 @@ bool at_estimate(const StereoModel& stereo, const Eigen::Vector3d& measured_pixe
   const Eigen::Vector3d p = sensor.rotation.transpose() * (estimate_mean - sensor.translation);
   if (!(p.z() > 0.0)) return false;
   const Eigen::Vector3d predicted = project(stereo, p);
-  const double u = predicted.x() - stereo.principal_x_px;
-  const double v = predicted.y() - stereo.principal_y_px;
-  const double b_over_d = stereo.baseline_m / predicted.z();
-  const double b_over_d2 = b_over_d / predicted.z();
-  // Eq. 4's Jacobian of eq. 3, at the predicted (u, v, d).
-  Eigen::Matrix3d jacobian;
-  jacobian << b_over_d, 0.0, -u * b_over_d2, 0.0, b_over_d, -v * b_over_d2, 0.0, 0.0, -stereo.focal_px * b_over_d2;
-  const Eigen::Matrix3d map_jacobian = sensor.rotation * jacobian;
+  const Eigen::Matrix3d map_jacobian =
+      sensor.rotation * core::stereo_triangulation_jacobian(stereo.focal_px, stereo.baseline_m,
+                                                            predicted.x() - stereo.principal_x_px,
+                                                            predicted.y() - stereo.principal_y_px, predicted.z());
   const Eigen::Vector3d variances(stereo.sigma_u_px * stereo.sigma_u_px, stereo.sigma_v_px * stereo.sigma_v_px,
                                   stereo.sigma_d_px * stereo.sigma_d_px);
   linearised.point = estimate_mean + map_jacobian * (measured_pixel - predicted);

@@ -1,5 +1,7 @@
 #include "stereoscout/vision/calibration.hpp"
 
+#include "stereoscout/core/geometry.hpp"
+
 namespace stereoscout::vision {
 
 StereoCalibration calibration_from_config(const core::CameraConfig& camera) {
@@ -30,15 +32,9 @@ StereoPoint triangulate(const StereoCalibration& calibration, const StereoNoise&
                         double x_right_px, double y_right_px, double disparity_px) {
   StereoPoint result;
   result.point_camera = triangulate_point(calibration, x_right_px, y_right_px, disparity_px);
-  const double u = x_right_px - calibration.principal_x_px;
-  const double v = y_right_px - calibration.principal_y_px;
-  const double b_over_d = calibration.baseline_m / disparity_px;
-  const double b_over_d2 = b_over_d / disparity_px;
-  // Jacobian of eq. 3 with respect to (u, v, d) (paper eq. 4).
-  Eigen::Matrix3d jacobian;
-  jacobian << b_over_d, 0.0, -u * b_over_d2,
-              0.0, b_over_d, -v * b_over_d2,
-              0.0, 0.0, -calibration.focal_px * b_over_d2;
+  const Eigen::Matrix3d jacobian = core::stereo_triangulation_jacobian(
+      calibration.focal_px, calibration.baseline_m, x_right_px - calibration.principal_x_px,
+      y_right_px - calibration.principal_y_px, disparity_px);
   const Eigen::Vector3d variances(noise.sigma_u_px * noise.sigma_u_px, noise.sigma_v_px * noise.sigma_v_px,
                                   noise.sigma_d_px * noise.sigma_d_px);
   result.covariance = jacobian * variances.asDiagonal() * jacobian.transpose();

@@ -535,10 +535,10 @@ double mean_fused_range_error(bool linearise) {
                            stereo.focal_px * stereo.baseline_m / kRange_m + noise.gaussian(0.0, stereo.sigma_d_px));
   };
   auto at_measurement = [&](const Eigen::Vector3d& pixel) {
-    const double b_over_d = stereo.baseline_m / pixel.z(), b_over_d2 = b_over_d / pixel.z();
+    const double b_over_d = stereo.baseline_m / pixel.z();
     const double u = pixel.x() - stereo.principal_x_px, v = pixel.y() - stereo.principal_y_px;
-    Eigen::Matrix3d jacobian;
-    jacobian << b_over_d, 0.0, -u * b_over_d2, 0.0, b_over_d, -v * b_over_d2, 0.0, 0.0, -stereo.focal_px * b_over_d2;
+    const Eigen::Matrix3d jacobian =
+        core::stereo_triangulation_jacobian(stereo.focal_px, stereo.baseline_m, u, v, pixel.z());
     MapFrameObservation seen;
     seen.point = Eigen::Vector3d(u * b_over_d, v * b_over_d, stereo.focal_px * b_over_d);
     seen.covariance = core::symmetrize(
@@ -666,10 +666,10 @@ double corridor_drive_scale(bool linearise) {
       if (pixel.x() < 0.0 || pixel.x() > 639.0 || pixel.y() < 0.0 || pixel.y() > 479.0) continue;
       for (int axis = 0; axis < 3; ++axis) pixel[axis] += noise.gaussian(0.0, kActualPixelNoise);
       if (pixel.z() < 1.0) continue;
-      const double b_over_d = stereo.baseline_m / pixel.z(), b_over_d2 = b_over_d / pixel.z();
+      const double b_over_d = stereo.baseline_m / pixel.z();
       const double u = pixel.x() - stereo.principal_x_px, v = pixel.y() - stereo.principal_y_px;
-      Eigen::Matrix3d jacobian;
-      jacobian << b_over_d, 0.0, -u * b_over_d2, 0.0, b_over_d, -v * b_over_d2, 0.0, 0.0, -stereo.focal_px * b_over_d2;
+      const Eigen::Matrix3d jacobian =
+          core::stereo_triangulation_jacobian(stereo.focal_px, stereo.baseline_m, u, v, pixel.z());
       core::LandmarkObservation o;
       o.landmark_id = id;
       o.point_camera = Eigen::Vector3d(u * b_over_d, v * b_over_d, stereo.focal_px * b_over_d);

@@ -57,6 +57,12 @@ Eigen::Matrix3d body_from_optical();
 // `mount` turned by `pan_rad` about the robot's z axis (counter-clockwise positive).
 Eigen::Isometry3d robot_from_camera(const CameraMount& mount, double pan_rad);
 
+// The Jacobian of stereo triangulation (x, y, z) = (u B / d, v B / d, f B / d) with respect to
+// (u, v, d), u and v measured from the principal point (paper eq. 4): a stereo point's
+// covariance is J diag(sigma_u^2, sigma_v^2, sigma_d^2) J^T.
+Eigen::Matrix3d stereo_triangulation_jacobian(double focal_px, double baseline_m, double u_px, double v_px,
+                                              double disparity_px);
+
 // Covariance helpers.
 Eigen::Matrix3d symmetrize(const Eigen::Matrix3d& covariance);
 bool is_positive_definite(const Eigen::Matrix3d& covariance);
