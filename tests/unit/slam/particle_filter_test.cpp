@@ -524,6 +524,21 @@ TEST(ObservationModel, RangeBearingCovarianceFollowsTheJacobian) {
 // (at_estimate). At the measurement the variance along the ray goes as 1 / d^4, so sightings
 // measured too near weigh more and over 400 landmarks the fused range is short by about 2.5 %;
 // linearised, every sighting weighs alike and the range is right to within 0.3 %.
+// A stereo observation as the front end makes it from a measured (u, v, d): the triangulated
+// point and J diag(sigma^2) J^T at the measurement (paper eq. 3-4).
+core::LandmarkObservation observation_at_pixel(const StereoModel& stereo, const Eigen::Vector3d& pixel) {
+  const double b_over_d = stereo.baseline_m / pixel.z();
+  const double u = pixel.x() - stereo.principal_x_px, v = pixel.y() - stereo.principal_y_px;
+  const Eigen::Matrix3d jacobian =
+      core::stereo_triangulation_jacobian(stereo.focal_px, stereo.baseline_m, u, v, pixel.z());
+  const Eigen::Vector3d variances(stereo.sigma_u_px * stereo.sigma_u_px, stereo.sigma_v_px * stereo.sigma_v_px,
+                                  stereo.sigma_d_px * stereo.sigma_d_px);
+  core::LandmarkObservation observation;
+  observation.point_camera = Eigen::Vector3d(u * b_over_d, v * b_over_d, stereo.focal_px * b_over_d);
+  observation.covariance = core::symmetrize(jacobian * variances.asDiagonal() * jacobian.transpose());
+  return observation;
+}
+
 double mean_fused_range_error(bool linearise) {
   const StereoModel stereo{400.0, 320.0, 240.0, 0.1, 10.0, 10.0, 0.5};
   constexpr double kRange_m = 6.0;
@@ -535,14 +550,10 @@ double mean_fused_range_error(bool linearise) {
                            stereo.focal_px * stereo.baseline_m / kRange_m + noise.gaussian(0.0, stereo.sigma_d_px));
   };
   auto at_measurement = [&](const Eigen::Vector3d& pixel) {
-    const double b_over_d = stereo.baseline_m / pixel.z();
-    const double u = pixel.x() - stereo.principal_x_px, v = pixel.y() - stereo.principal_y_px;
-    const Eigen::Matrix3d jacobian =
-        core::stereo_triangulation_jacobian(stereo.focal_px, stereo.baseline_m, u, v, pixel.z());
+    const core::LandmarkObservation observation = observation_at_pixel(stereo, pixel);
     MapFrameObservation seen;
-    seen.point = Eigen::Vector3d(u * b_over_d, v * b_over_d, stereo.focal_px * b_over_d);
-    seen.covariance = core::symmetrize(
-        jacobian * Eigen::Vector3d(100.0, 100.0, 0.25).asDiagonal() * jacobian.transpose());
+    seen.point = observation.point_camera;
+    seen.covariance = observation.covariance;
     return seen;
   };
   double error_sum = 0.0;
@@ -666,14 +677,8 @@ double corridor_drive_scale(bool linearise) {
       if (pixel.x() < 0.0 || pixel.x() > 639.0 || pixel.y() < 0.0 || pixel.y() > 479.0) continue;
       for (int axis = 0; axis < 3; ++axis) pixel[axis] += noise.gaussian(0.0, kActualPixelNoise);
       if (pixel.z() < 1.0) continue;
-      const double b_over_d = stereo.baseline_m / pixel.z();
-      const double u = pixel.x() - stereo.principal_x_px, v = pixel.y() - stereo.principal_y_px;
-      const Eigen::Matrix3d jacobian =
-          core::stereo_triangulation_jacobian(stereo.focal_px, stereo.baseline_m, u, v, pixel.z());
-      core::LandmarkObservation o;
+      core::LandmarkObservation o = observation_at_pixel(stereo, pixel);
       o.landmark_id = id;
-      o.point_camera = Eigen::Vector3d(u * b_over_d, v * b_over_d, stereo.focal_px * b_over_d);
-      o.covariance = jacobian * Eigen::Vector3d(100.0, 100.0, 0.25).asDiagonal() * jacobian.transpose();
       observations.push_back(o);
     }
     if (!filter.update(odometry, as_list(observations), 0.0).status.ok()) return 0.0;
