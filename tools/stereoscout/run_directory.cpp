@@ -307,6 +307,7 @@ void write_counters(report::JsonWriter& json, const stack::Stack& stack) {
       .unsigned_integer("traces_seen_standing", e.traces_seen_standing)
       .unsigned_integer("plans_kept_for_walkers", e.plans_kept_for_walkers)
       .unsigned_integer("walker_holds", e.walker_holds)
+      .unsigned_integer("plans_switched", e.plans_switched)
       .unsigned_integer("walker_waits_ended", e.walker_waits_ended)
       .unsigned_integer("looks", e.looks)
       .unsigned_integer("door_scans", d.scans_at_doors)

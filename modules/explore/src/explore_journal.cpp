@@ -24,6 +24,7 @@ const char* to_string(ExploreEventKind kind) {
     case ExploreEventKind::following_trail: return "following_trail";
     case ExploreEventKind::plan_kept: return "plan_kept";
     case ExploreEventKind::walker_hold: return "walker_hold";
+    case ExploreEventKind::plan_switched: return "plan_switched";
     case ExploreEventKind::explored: return "explored";
     case ExploreEventKind::time_limit: return "time_limit";
     case ExploreEventKind::return_failed: return "return_failed";

@@ -114,7 +114,8 @@ Explorer::Explorer(const ExploreParams& params)
       door_axis_(params),
       sighting_(params),
       standoff_(params),
-      plan_(static_cast<std::size_t>(params.explore.max_plan_waypoints)) {}
+      plan_(static_cast<std::size_t>(params.explore.max_plan_waypoints)),
+      fresh_plan_(static_cast<std::size_t>(params.explore.max_plan_waypoints)) {}
 
 Eigen::Vector2d Explorer::stall_position(const ExploreInput& input) const {
   return params_.explore.stall_from_odometry ? position_of(input.odometry) : position_of(input.pose);
@@ -339,7 +340,36 @@ void Explorer::check_plan(const ExploreInput& input) {
     }
   }
   stop_waiting_for_walkers(input.time_s);
+  if (switch_to_cheaper_plan(input)) return;
   if (params_.explore.refit_kept_plans) planner_.refit(map_, plan_, follower_.progress() + 1);
+}
+
+// The kept plan was the cheapest on the map it was made on. A cell that turned impassable
+// replans it (above); one that turned costly, such as a door's far jamb mapped since and
+// putting the crossing within its safety margin, does not. A fresh plan to the same cell is
+// taken only when it is clearly cheaper, so that two near-equal ways do not alternate.
+bool Explorer::switch_to_cheaper_plan(const ExploreInput& input) {
+  const double saving = params_.explore.plan_switch_saving_m;
+  if (saving <= 0.0 || plan_.cells.size() < 2 || crossing_traces_ || following_trail_) return false;
+  const double kept = PathPlanner::remaining_cost(map_, plan_, follower_.progress());
+  if (planner_.plan(map_, cell_of(input.pose), plan_.cells.back(), fresh_plan_) != PlanResult::found ||
+      fresh_plan_.cost > kept - saving) {
+    return false;
+  }
+  plan_.swap(fresh_plan_);
+  follower_.reset();
+  ++counters_.plans_switched;
+  note(ExploreEventKind::plan_switched, input);
+  note_plan_length(input);
+  return true;
+}
+
+// A longer plan is a detour the map now demands (a wall where it held free cells): progress
+// is measured along it, not against the shorter plan's best.
+void Explorer::note_plan_length(const ExploreInput& input) {
+  const double length = remaining_path_m(position_of(input.pose));
+  longest_plan_m_ = std::max(longest_plan_m_, length);
+  if (std::isfinite(best_goal_distance_m_)) best_goal_distance_m_ = std::max(best_goal_distance_m_, length);
 }
 
 // A plan that the next view blocks, again and again, runs through a gap each view opens and
@@ -413,11 +443,7 @@ bool Explorer::replan(const ExploreInput& input) {
       (start_crossing_traces(input) && plan_to_goal(input)) ||
       (returning && start_following_trail(input) && plan_to_goal(input))) {
     fresh_look_ = false;  // the robot drives on: the next failure deserves a look of its own
-    // A longer plan is a detour the map now demands (a wall where it held free cells): progress
-    // is measured along it, not against the shorter plan's best.
-    const double length = remaining_path_m(position_of(input.pose));
-    longest_plan_m_ = std::max(longest_plan_m_, length);
-    if (std::isfinite(best_goal_distance_m_)) best_goal_distance_m_ = std::max(best_goal_distance_m_, length);
+    note_plan_length(input);
     return true;
   }
   ++counters_.plan_failures;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace stereoscout::explore {
 namespace {
@@ -168,6 +169,17 @@ bool PathPlanner::narrow(const NavigationMap& map, int x, int y) const {
 void PathPlanner::refit(const NavigationMap& map, Plan& plan, std::size_t first) const {
   for (std::size_t k = first; k < plan.cells.size(); ++k) plan.narrow[k] = narrow(map, plan.cells[k].x(), plan.cells[k].y());
   centre_in_gaps(map, plan, std::max<std::size_t>(first, 1));
+}
+
+double PathPlanner::remaining_cost(const NavigationMap& map, const Plan& plan, std::size_t first) {
+  double cost = 0.0;
+  for (std::size_t k = first; k + 1 < plan.cells.size(); ++k) {
+    const Eigen::Vector2i& from = plan.cells[k];
+    const Eigen::Vector2i& to = plan.cells[k + 1];
+    if (!map.passable(to.x(), to.y())) return std::numeric_limits<double>::infinity();
+    cost += map.step_cost(from.x(), from.y(), to.x(), to.y());
+  }
+  return cost;
 }
 
 // The first and last waypoints stay at their cells' centres (the robot's cell, the goal's).

@@ -37,6 +37,28 @@ TEST(FixedVector, HoldsNonTrivialTypesAndDestroysThem) {
   EXPECT_TRUE(vector.empty());
 }
 
+TEST(FixedVector, SwapExchangesContentsAndCapacitiesWithoutAllocating) {
+  FixedVector<int> small(2);
+  FixedVector<int> large(5);
+  small.push_back(1);
+  small.push_back(2);
+  small.push_back(3);  // refused, counted
+  large.push_back(7);
+  {
+    AllocationScope scope;
+    small.swap(large);
+    EXPECT_EQ(scope.allocations(), 0u);
+  }
+  ASSERT_EQ(small.size(), 1u);
+  EXPECT_EQ(small[0], 7);
+  EXPECT_EQ(small.capacity(), 5u);
+  EXPECT_EQ(small.overflows(), 0u);
+  ASSERT_EQ(large.size(), 2u);
+  EXPECT_EQ(large[1], 2);
+  EXPECT_EQ(large.capacity(), 2u);
+  EXPECT_EQ(large.overflows(), 1u);
+}
+
 TEST(FixedVector, NoHeapAllocationAfterConstruction) {
   FixedVector<int> vector(100);
   AllocationScope scope;

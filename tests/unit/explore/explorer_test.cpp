@@ -87,6 +87,55 @@ TEST(Explorer, ReplansWhenAnObstacleAppearsOnThePath) {
   }
 }
 
+// The row at which the explorer's plan crosses the cells of column x (-1: it does not).
+int crossing_row(const Explorer& explorer, int x) {
+  for (const Eigen::Vector2i& cell : explorer.plan().cells) {
+    if (cell.x() == x) return cell.y();
+  }
+  return -1;
+}
+
+// A plan made across an open room; then a wall with a door goes up around its crossing, whose
+// far jamb leaves the kept crossing passable but within the safety margin, 0.15 m off the
+// door's middle (as office seed 4's plan at 1520 s). The kept plan is only blocked where a
+// cell turns impassable, so without plan_switch_saving_m it stays at the jamb; with it, a
+// fresh plan through the door's middle cells is taken, once.
+TEST(Explorer, AKeptPlanThatAJambMakesCostlyIsSwitchedForACheaperOne) {
+  for (const double saving : {0.0, 0.25}) {
+    Corridor scene;
+    ExploreParams params = no_look_params(100, 60);
+    params.explore.plan_switch_saving_m = saving;
+    Explorer explorer(params);
+    explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.0, true));
+    ASSERT_EQ(explorer.state(), ExploreState::drive);
+    const int row = crossing_row(explorer, 30);
+    ASSERT_GT(row, 10);
+    ASSERT_LT(row, 50);
+    // Jamb cells' centres 1.1 m apart: passable rows row-3 .. row (0.4 m or more from both),
+    // of which row-2 and row-1 are outside the safety margin (0.5 m or more).
+    scene.grid.fill(30, 1, 31, row - 6, CellState::occupied);
+    scene.grid.fill(30, row + 4, 31, 59, CellState::occupied);
+    explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 1.0, true));
+    ASSERT_TRUE(explorer.navigation_map().passable(30, row));
+    ASSERT_NE(explorer.navigation_map().traversability(30, row), Traversability::safe);
+    EXPECT_EQ(explorer.counters().replans, 0U) << saving;  // nothing on the plan impassable
+    if (saving == 0.0) {
+      EXPECT_EQ(crossing_row(explorer, 30), row);
+      EXPECT_EQ(explorer.counters().plans_switched, 0U);
+      continue;
+    }
+    const int switched = crossing_row(explorer, 30);
+    EXPECT_TRUE(switched == row - 2 || switched == row - 1) << switched << " " << row;
+    EXPECT_EQ(explorer.counters().plans_switched, 1U);
+    EXPECT_EQ(journaled(explorer, ExploreEventKind::plan_switched), 1U);
+    EXPECT_EQ(explorer.plan().cells[0], Eigen::Vector2i(15, 30));  // from the robot's cell
+    // The same map again: the plan is the cheapest on it, and it stays.
+    explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 2.0, true));
+    EXPECT_EQ(explorer.counters().plans_switched, 1U);
+    EXPECT_EQ(crossing_row(explorer, 30), switched);
+  }
+}
+
 ExploreParams standing_robot_params(bool wait_for_walkers) {
   ExploreParams params = no_look_params(100, 60);
   params.explore.wait_for_walkers = wait_for_walkers;

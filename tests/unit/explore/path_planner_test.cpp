@@ -103,6 +103,13 @@ TEST(PathPlanner, FindsTheCheapestPathOnRandomGrids) {
       sum += map.step_cost(plan.cells[k - 1].x(), plan.cells[k - 1].y(), plan.cells[k].x(), plan.cells[k].y());
     }
     EXPECT_NEAR(sum, plan.cost, 1e-4 * sum);
+    EXPECT_NEAR(PathPlanner::remaining_cost(map, plan, 0), sum, 1e-9 * sum);
+    const std::size_t half = plan.cells.size() / 2;
+    const double first_half = sum - PathPlanner::remaining_cost(map, plan, half);
+    EXPECT_GT(first_half, 0.0);
+    grid.set(plan.cells[half + 1].x(), plan.cells[half + 1].y(), CellState::occupied);  // ahead of `half`
+    ASSERT_TRUE(map.rebuild(grid.view(), robot, robot));
+    EXPECT_TRUE(std::isinf(PathPlanner::remaining_cost(map, plan, half))) << seed;
   }
   EXPECT_GT(found, 20);  // most random grids have a path
 }

@@ -75,6 +75,14 @@ class FixedVector {
   bool full() const { return size_ == capacity_; }
   std::uint64_t overflows() const { return overflows_; }
 
+  // Exchanges the two vectors' storage: no element is copied and nothing is allocated.
+  void swap(FixedVector& other) noexcept {
+    std::swap(capacity_, other.capacity_);
+    storage_.swap(other.storage_);
+    std::swap(size_, other.size_);
+    std::swap(overflows_, other.overflows_);
+  }
+
  private:
   struct Storage {
     alignas(T) unsigned char bytes[sizeof(T)];

@@ -25,6 +25,7 @@ enum class ExploreEventKind : std::uint8_t {
   plan_blocked,      // an update made the rest of the plan impassable: replanning
   plan_kept,         // ... only by passers-by: kept (wait_for_walkers; once a span)
   walker_hold,       // ... by a passer-by near the robot: it stands still for walker_hold_s
+  plan_switched,     // a fresh plan costs plan_switch_saving_m less than the rest of the kept one: taken
   no_plan,           // A* found no path to the goal (or the start)
   stuck,             // no progress along the plan for stuck_timeout_s
   goal_timeout,      // pursued longer than its plans' driving time allows (goal_time_factor)

@@ -117,6 +117,7 @@ struct ExploreCounters {
   std::uint64_t traces_confirmed = 0;  // trace cells still occupied after a look: obstacles since
   std::uint64_t plans_kept_for_walkers = 0;  // blocked only by passers-by: kept (wait_for_walkers)
   std::uint64_t walker_waits_ended = 0;      // a goal's walker_wait_per_goal_s used up: replanned as without it
+  std::uint64_t plans_switched = 0;          // a fresh plan cheaper by plan_switch_saving_m taken over the kept one
   std::uint64_t walker_holds = 0;            // a kept plan's passer-by near: the robot stood still (walker_hold_s)
   std::uint64_t traces_seen_standing = 0;  // cells seen occupied in view for trace_view_updates: never traces
 };
@@ -163,6 +164,8 @@ class Explorer {
   bool plan_to_goal(const ExploreInput& input);
   void check_plan(const ExploreInput& input);
   bool replan(const ExploreInput& input);
+  bool switch_to_cheaper_plan(const ExploreInput& input);
+  void note_plan_length(const ExploreInput& input);
   void begin_pursuit(const ExploreInput& input);
   double remaining_path_m(const Eigen::Vector2d& position) const;
   bool out_of_time(double time_s) const;
@@ -238,6 +241,7 @@ class Explorer {
   // correction now (none without one), they lie where the navigation pose puts them.
   core::Pose2 seen_correction_;
   Plan plan_;
+  Plan fresh_plan_;  // plan_switch_saving_m: the fresh plan weighed against the kept one
   Goal goal_;
   ExploreCounters counters_;
   ExploreState state_ = ExploreState::look_around;

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <utility>
 
 #include "stereoscout/core/fixed_vector.hpp"
 #include "stereoscout/explore/navigation_map.hpp"
@@ -30,6 +31,12 @@ struct Plan {
     cost = 0.0;
   }
   bool empty() const { return waypoints.empty(); }
+  void swap(Plan& other) noexcept {
+    cells.swap(other.cells);
+    waypoints.swap(other.waypoints);
+    narrow.swap(other.narrow);
+    std::swap(cost, other.cost);
+  }
   core::FixedVector<Eigen::Vector2i> cells;
   core::FixedVector<Eigen::Vector2d> waypoints;
   core::FixedVector<bool> narrow;
@@ -50,6 +57,9 @@ class PathPlanner {
   // waypoints' places in the gaps as planning on this map would set them. A plan made while a
   // door's jambs were not yet in the map runs through the door at its cells' centres.
   void refit(const NavigationMap& map, Plan& plan, std::size_t first) const;
+  // What the plan's cells from `first` on cost on this map (the sum of step_cost), or
+  // infinity if one of them is no longer passable.
+  static double remaining_cost(const NavigationMap& map, const Plan& plan, std::size_t first);
 
  private:
   void push_or_decrease(std::int32_t cell, float cost);
