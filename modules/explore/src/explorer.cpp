@@ -350,7 +350,7 @@ void Explorer::check_plan(const ExploreInput& input) {
 // taken only when it is clearly cheaper, so that two near-equal ways do not alternate.
 bool Explorer::switch_to_cheaper_plan(const ExploreInput& input) {
   const double saving = params_.explore.plan_switch_saving_m;
-  if (saving <= 0.0 || plan_.cells.size() < 2 || crossing_traces_ || following_trail_) return false;
+  if (saving <= 0.0 || plan_.cells.size() < 2 || crossing_traces_ || following_trail_ || !narrow_ahead()) return false;
   const double kept = PathPlanner::remaining_cost(map_, plan_, follower_.progress());
   if (planner_.plan(map_, cell_of(input.pose), plan_.cells.back(), fresh_plan_) != PlanResult::found ||
       fresh_plan_.cost > kept - saving) {
@@ -362,6 +362,20 @@ bool Explorer::switch_to_cheaper_plan(const ExploreInput& input) {
   note(ExploreEventKind::plan_switched, input);
   note_plan_length(input);
   return true;
+}
+
+// Whether a cell of the kept plan within plan_switch_within_m ahead of the robot lies within
+// an obstacle's safety margin on the rebuilt map.
+bool Explorer::narrow_ahead() const {
+  const double within = params_.explore.plan_switch_within_m;
+  if (within <= 0.0) return true;
+  const std::size_t first = follower_.progress();
+  double along = 0.0;
+  for (std::size_t k = first + 1; k < plan_.cells.size() && along <= within; ++k) {
+    along += (plan_.waypoints[k] - plan_.waypoints[k - 1]).norm();
+    if (map_.traversability(plan_.cells[k].x(), plan_.cells[k].y()) != Traversability::safe) return true;
+  }
+  return false;
 }
 
 // A longer plan is a detour the map now demands (a wall where it held free cells): progress

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -99,12 +100,14 @@ int crossing_row(const Explorer& explorer, int x) {
 // far jamb leaves the kept crossing passable but within the safety margin, 0.15 m off the
 // door's middle (as office seed 4's plan at 1520 s). The kept plan is only blocked where a
 // cell turns impassable, so without plan_switch_saving_m it stays at the jamb; with it, a
-// fresh plan through the door's middle cells is taken, once.
+// fresh plan through the door's middle cells is taken, once; but not while the door is
+// farther ahead than plan_switch_within_m (1.5 m away here).
 TEST(Explorer, AKeptPlanThatAJambMakesCostlyIsSwitchedForACheaperOne) {
-  for (const double saving : {0.0, 0.25}) {
+  for (const auto& [saving, within] : {std::pair{0.0, 1.5}, std::pair{0.25, 1.0}, std::pair{0.25, 1.6}}) {
     Corridor scene;
     ExploreParams params = no_look_params(100, 60);
     params.explore.plan_switch_saving_m = saving;
+    params.explore.plan_switch_within_m = within;
     Explorer explorer(params);
     explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.0, true));
     ASSERT_EQ(explorer.state(), ExploreState::drive);
@@ -119,7 +122,7 @@ TEST(Explorer, AKeptPlanThatAJambMakesCostlyIsSwitchedForACheaperOne) {
     ASSERT_TRUE(explorer.navigation_map().passable(30, row));
     ASSERT_NE(explorer.navigation_map().traversability(30, row), Traversability::safe);
     EXPECT_EQ(explorer.counters().replans, 0U) << saving;  // nothing on the plan impassable
-    if (saving == 0.0) {
+    if (saving == 0.0 || within < 1.5) {
       EXPECT_EQ(crossing_row(explorer, 30), row);
       EXPECT_EQ(explorer.counters().plans_switched, 0U);
       continue;

@@ -165,6 +165,7 @@ class Explorer {
   void check_plan(const ExploreInput& input);
   bool replan(const ExploreInput& input);
   bool switch_to_cheaper_plan(const ExploreInput& input);
+  bool narrow_ahead() const;
   void note_plan_length(const ExploreInput& input);
   void begin_pursuit(const ExploreInput& input);
   double remaining_path_m(const Eigen::Vector2d& position) const;
