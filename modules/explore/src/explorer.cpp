@@ -364,8 +364,8 @@ bool Explorer::switch_to_cheaper_plan(const ExploreInput& input) {
   return true;
 }
 
-// Whether a cell of the kept plan within plan_switch_within_m ahead of the robot lies within
-// an obstacle's safety margin on the rebuilt map.
+// Whether a cell of the kept plan ahead of the robot, up to the first waypoint at or past
+// plan_switch_within_m along it, lies within an obstacle's safety margin on the rebuilt map.
 bool Explorer::narrow_ahead() const {
   const double within = params_.explore.plan_switch_within_m;
   if (within <= 0.0) return true;
