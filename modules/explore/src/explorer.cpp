@@ -115,7 +115,9 @@ Explorer::Explorer(const ExploreParams& params)
       sighting_(params),
       standoff_(params),
       plan_(static_cast<std::size_t>(params.explore.max_plan_waypoints)),
-      fresh_plan_(static_cast<std::size_t>(params.explore.max_plan_waypoints)) {}
+      // Only the plan switch plans into the second plan: without it, it holds nothing.
+      fresh_plan_(params.explore.plan_switch_saving_m > 0.0 ? static_cast<std::size_t>(params.explore.max_plan_waypoints)
+                                                             : 0) {}
 
 Eigen::Vector2d Explorer::stall_position(const ExploreInput& input) const {
   return params_.explore.stall_from_odometry ? position_of(input.odometry) : position_of(input.pose);
