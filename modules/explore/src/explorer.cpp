@@ -367,7 +367,7 @@ bool Explorer::switch_to_cheaper_plan(const ExploreInput& input) {
 }
 
 // Whether a cell of the kept plan ahead of the robot, up to the first waypoint at or past
-// plan_switch_within_m along it, lies within an obstacle's safety margin on the rebuilt map.
+// plan_switch_within_m along it, is narrow on the rebuilt map.
 bool Explorer::narrow_ahead() const {
   const double within = params_.explore.plan_switch_within_m;
   if (within <= 0.0) return true;
@@ -375,7 +375,7 @@ bool Explorer::narrow_ahead() const {
   double along = 0.0;
   for (std::size_t k = first + 1; k < plan_.cells.size() && along <= within; ++k) {
     along += (plan_.waypoints[k] - plan_.waypoints[k - 1]).norm();
-    if (map_.traversability(plan_.cells[k].x(), plan_.cells[k].y()) != Traversability::safe) return true;
+    if (planner_.narrow(map_, plan_.cells[k].x(), plan_.cells[k].y())) return true;
   }
   return false;
 }

@@ -518,12 +518,6 @@ TEST(ObservationModel, RangeBearingCovarianceFollowsTheJacobian) {
   EXPECT_TRUE(is_valid_observation(o));
 }
 
-// A landmark 6 m straight ahead of a camera at the map's origin, seen 40 times with 0.5 px of
-// disparity noise (and 10 px in u and v: the paper's numbers), fused by the EKF either at each
-// measured point with the covariance J S J^T there (paper eq. 4) or linearised at the estimate
-// (at_estimate). At the measurement the variance along the ray goes as 1 / d^4, so sightings
-// measured too near weigh more and over 400 landmarks the fused range is short by about 2.5 %;
-// linearised, every sighting weighs alike and the range is right to within 0.3 %.
 // A stereo observation as the front end makes it from a measured (u, v, d): the triangulated
 // point and J diag(sigma^2) J^T at the measurement (paper eq. 3-4).
 core::LandmarkObservation observation_at_pixel(const StereoModel& stereo, const Eigen::Vector3d& pixel) {
@@ -539,6 +533,12 @@ core::LandmarkObservation observation_at_pixel(const StereoModel& stereo, const 
   return observation;
 }
 
+// A landmark 6 m straight ahead of a camera at the map's origin, seen 40 times with 0.5 px of
+// disparity noise (and 10 px in u and v: the paper's numbers), fused by the EKF either at each
+// measured point with the covariance J S J^T there (paper eq. 4) or linearised at the estimate
+// (at_estimate). At the measurement the variance along the ray goes as 1 / d^4, so sightings
+// measured too near weigh more and over 400 landmarks the fused range is short by about 2.5 %;
+// linearised, every sighting weighs alike and the range is right to within 0.3 %.
 double mean_fused_range_error(bool linearise) {
   const StereoModel stereo{400.0, 320.0, 240.0, 0.1, 10.0, 10.0, 0.5};
   constexpr double kRange_m = 6.0;

@@ -60,6 +60,9 @@ class PathPlanner {
   // What the plan's cells from `first` on cost on this map (the sum of step_cost), or
   // infinity if one of them is no longer passable.
   static double remaining_cost(const NavigationMap& map, const Plan& plan, std::size_t first);
+  // A cell within the safety margin of an obstacle, or nearer than explore.narrow_clearance_m
+  // to one (Plan::narrow).
+  bool narrow(const NavigationMap& map, int x, int y) const;
 
  private:
   void push_or_decrease(std::int32_t cell, float cost);
@@ -70,7 +73,6 @@ class PathPlanner {
   float heuristic(std::int32_t cell) const;
   // Moves the waypoints in narrow gaps to their middle (explore.gap_centring_reach_m).
   void centre_in_gaps(const NavigationMap& map, Plan& plan, std::size_t first) const;
-  bool narrow(const NavigationMap& map, int x, int y) const;
 
   std::size_t capacity_;
   int width_ = 0;
