@@ -102,7 +102,8 @@ Explorer::Explorer(const ExploreParams& params)
       goal_value_(params),
       memory_(static_cast<std::size_t>(params.explore.goal_memory), params.explore.visited_goal_radius_m,
               params.explore.blacklist_radius_m, params.explore.goal_failures_before_blacklist,
-              params.explore.failed_goal_cooldown_s, params.explore.blacklist_hold_s),
+              params.explore.failed_goal_cooldown_s, params.explore.blacklist_hold_s,
+              params.explore.goal_failure_radius_m),
       stall_(params.explore),
       contacts_(params.explore, params.max_width, params.max_height),
       recent_(params.explore, params.max_width, params.max_height),
@@ -385,6 +386,7 @@ bool Explorer::narrow_ahead() const {
 void Explorer::note_plan_length(const ExploreInput& input) {
   const double length = remaining_path_m(position_of(input.pose));
   longest_plan_m_ = std::max(longest_plan_m_, length);
+  if (first_plan_m_ <= 0.0) first_plan_m_ = length;
   if (std::isfinite(best_goal_distance_m_)) best_goal_distance_m_ = std::max(best_goal_distance_m_, length);
 }
 
@@ -473,6 +475,7 @@ void Explorer::begin_pursuit(const ExploreInput& input) {
   last_progress_time_s_ = input.time_s;
   goal_started_s_ = input.time_s;
   longest_plan_m_ = 0.0;
+  first_plan_m_ = 0.0;
   nearest_remaining_m_ = std::numeric_limits<double>::infinity();
   nearest_remaining_time_s_ = input.time_s;
   blocked_plans_ = 0;
@@ -496,10 +499,11 @@ double Explorer::remaining_path_m(const Eigen::Vector2d& position) const {
 
 // Progress along each new plan resets the stuck timer, so a robot that alternates between two
 // routes (a gap in a wall that the next view closes, a door) would never fail: the goal gets
-// stuck_timeout_s plus goal_time_factor times its longest plan's driving time, in all.
+// stuck_timeout_s plus goal_time_factor times its longest (or first) plan's driving time.
 bool Explorer::out_of_time(double time_s) const {
   if (params_.explore.goal_time_factor <= 0.0) return false;
-  const double driving_s = longest_plan_m_ / params_.max_speed_mps;
+  const double plan_m = params_.explore.goal_time_first_plan ? first_plan_m_ : longest_plan_m_;
+  const double driving_s = plan_m / params_.max_speed_mps;
   return time_s - goal_started_s_ > params_.explore.stuck_timeout_s + params_.explore.goal_time_factor * driving_s;
 }
 

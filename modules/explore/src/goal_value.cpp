@@ -16,11 +16,12 @@ constexpr int kMaxHoldDoublings = 20;
 }  // namespace
 
 GoalMemory::GoalMemory(std::size_t capacity, double radius_m, double blacklist_radius_m,
-                       int failures_before_blacklist, double cooldown_s, double hold_s)
+                       int failures_before_blacklist, double cooldown_s, double hold_s, double failure_radius_m)
     : entries_(capacity),
       radius2_(squared(radius_m)),
       // Never below the visited radius: failures add up within it.
       blacklist_radius2_(squared(std::max(radius_m, blacklist_radius_m))),
+      failure_radius2_(squared(failure_radius_m)),
       failures_before_blacklist_(failures_before_blacklist),
       cooldown_s_(cooldown_s),
       hold_s_(hold_s) {}
@@ -32,8 +33,22 @@ GoalMemory::Entry* GoalMemory::find(const Eigen::Vector2d& position) {
   return nullptr;
 }
 
+GoalMemory::Entry* GoalMemory::nearest_failed(const Eigen::Vector2d& position) {
+  Entry* nearest = nullptr;
+  double nearest2 = failure_radius2_;
+  for (Entry& entry : entries_) {
+    const double distance2 = (entry.position - position).squaredNorm();
+    if (!entry.visited && distance2 <= nearest2) {
+      nearest = &entry;
+      nearest2 = distance2;
+    }
+  }
+  return nearest;
+}
+
 bool GoalMemory::record_failure(const Eigen::Vector2d& position, double time_s) {
   Entry* entry = find(position);
+  if (entry == nullptr && failure_radius2_ > radius2_) entry = nearest_failed(position);
   if (entry == nullptr) {
     entry = entries_.emplace_back(Entry{position, 0});
     if (entry == nullptr) {

@@ -1178,6 +1178,31 @@ TEST(Explorer, AGoalWhosePlansKeepBeingBlockedFailsAtTheLimit) {
   EXPECT_EQ(explorer.journal()[limit_at + 1].kind, ExploreEventKind::goal_failed);
 }
 
+// The same two routes, the way round longer than the way through the gap. With
+// goal_time_first_plan the time limit is the first plan's (through the gap), so the goal
+// fails at stuck_timeout_s plus that plan's driving time; by the longest plan, later.
+TEST(Explorer, WithTheFirstPlansTimeLimitAGoalWhosePlansGrowFailsSooner) {
+  double failed_s[2] = {-1.0, -1.0};
+  for (const bool first : {true, false}) {
+    GapThatComesAndGoes scene;
+    ExploreParams params = no_look_params(100, 60);
+    params.explore.stuck_timeout_s = 10.0;
+    params.explore.goal_time_factor = 1.0;
+    params.explore.goal_time_first_plan = first;
+    Explorer explorer(params);
+    explorer.step(input_at(scene.grid.view(), 1.0, 4.3, 0.0, 0.0, true));
+    const std::vector<Eigen::Vector2d> plan = plan_of(explorer);
+    const double first_plan_m = (plan.front() - Eigen::Vector2d(1.0, 4.3)).norm() + length_of(plan);
+    Explorer fresh(params);
+    failed_s[first ? 0 : 1] = chase_the_gap(fresh, scene, 400.0);
+    EXPECT_EQ(fresh.counters().goal_timeouts, 1U) << first;
+    if (first) {
+      EXPECT_NEAR(failed_s[0], params.explore.stuck_timeout_s + first_plan_m / params.max_speed_mps, 0.2);
+    }
+  }
+  EXPECT_GT(failed_s[1], failed_s[0] + 5.0);
+}
+
 // The robot starts in a disc whose floor the camera cannot see. A strip of it that no later
 // view covered can be the only way on (the office's corridor, beside the first office's
 // door): its cells stay passable all the run, not only near the robot or on the way back.

@@ -196,6 +196,30 @@ TEST(GoalMemory, AGoalThatJustFailedIsSkippedForTheCooldownOnly) {
   EXPECT_FALSE(without.excluded(goal, 100.0));
 }
 
+// With a failure radius, failures add up by place: goals 1-2 m apart in a room the robot
+// cannot enter count as one, against the nearest failed goal; a visited goal within it takes
+// none of them, and a goal farther away starts a place of its own.
+TEST(GoalMemory, WithAFailureRadiusFailuresAddUpByPlace) {
+  GoalMemory memory(8, 0.5, 2.0, 3, 0.0, 0.0, 2.0);
+  const Eigen::Vector2d goal(6.25, 9.15);
+  memory.record_visit(goal + Eigen::Vector2d(0.0, -1.0));
+  EXPECT_FALSE(memory.record_failure(goal, 100.0));
+  EXPECT_FALSE(memory.record_failure(goal + Eigen::Vector2d(1.5, 0.0), 200.0));
+  const Eigen::Vector2d far = goal + Eigen::Vector2d(4.0, 0.0);
+  EXPECT_FALSE(memory.record_failure(far, 250.0));
+  EXPECT_FALSE(memory.excluded(goal + Eigen::Vector2d(-1.0, 0.5), 250.0));
+  EXPECT_TRUE(memory.record_failure(goal + Eigen::Vector2d(-1.2, 0.8), 300.0));
+  EXPECT_EQ(memory.blacklisted(), 1U);
+  EXPECT_TRUE(memory.excluded(goal + Eigen::Vector2d(-1.0, 0.5), 300.0));
+  EXPECT_FALSE(memory.excluded(far + Eigen::Vector2d(0.5, 0.0), 300.0));  // one failure there
+
+  GoalMemory by_goal(8, 0.5, 2.0, 3);  // the default: by goal
+  EXPECT_FALSE(by_goal.record_failure(goal, 100.0));
+  EXPECT_FALSE(by_goal.record_failure(goal + Eigen::Vector2d(1.5, 0.0), 200.0));
+  EXPECT_FALSE(by_goal.record_failure(goal + Eigen::Vector2d(-1.2, 0.8), 300.0));
+  EXPECT_EQ(by_goal.blacklisted(), 0U);
+}
+
 // With a hold, a blacklisting passes: the goal (and the candidates beside it) may be chosen
 // again hold_s after its last failure, its failures counted afresh, and a second blacklisting
 // lasts twice as long. A failure while held neither counts nor lengthens the hold. Visited

@@ -272,6 +272,7 @@ class Explorer {
   double last_progress_time_s_ = 0.0;
   double goal_started_s_ = 0.0;
   double longest_plan_m_ = 0.0;
+  double first_plan_m_ = 0.0;  // its first plan's length, for goal_time_first_plan
   // Net progress: the shortest remaining length of any of the goal's plans, and when it was.
   double nearest_remaining_m_ = 0.0;
   double nearest_remaining_time_s_ = 0.0;

@@ -32,7 +32,9 @@ struct Goal {
 };
 
 // Goals that failed, or were reached already: a fixed list. Failures of goals within radius_m
-// of each other count as one goal's. A visited goal excludes candidates within radius_m; a
+// of each other count as one goal's; with a larger failure_radius_m, so do failures of goals
+// within that of the nearest failed one (a place rather than a goal: a room the robot cannot
+// enter offers goals all over it). A visited goal excludes candidates within radius_m; a
 // blacklisted one within blacklist_radius_m, which may be larger: a room seen through a door
 // the robot cannot pass (too narrow, or hung with something at its height) offers one goal
 // after another beside the last, and each failure costs a drive there. With a cooldown, a goal
@@ -43,7 +45,7 @@ struct Goal {
 class GoalMemory {
  public:
   GoalMemory(std::size_t capacity, double radius_m, double blacklist_radius_m, int failures_before_blacklist,
-             double cooldown_s = 0.0, double hold_s = 0.0);
+             double cooldown_s = 0.0, double hold_s = 0.0, double failure_radius_m = 0.0);
   // Counts a failure at time_s of the goal at `position`; returns true when it is now blacklisted
   // (or still is, from earlier failures).
   bool record_failure(const Eigen::Vector2d& position, double time_s);
@@ -64,10 +66,12 @@ class GoalMemory {
     int blacklistings = 0;  // times it has been blacklisted
   };
   Entry* find(const Eigen::Vector2d& position);
+  Entry* nearest_failed(const Eigen::Vector2d& position);  // within failure_radius_m, not visited
   bool held(const Entry& entry, double time_s) const;  // blacklisted at time_s
   core::FixedVector<Entry> entries_;
   double radius2_;
   double blacklist_radius2_;
+  double failure_radius2_;
   int failures_before_blacklist_;
   double cooldown_s_;
   double hold_s_;
