@@ -1124,6 +1124,15 @@ double chase_the_gap(Explorer& explorer, GapThatComesAndGoes& scene, double unti
   return -1.0;
 }
 
+// The explorer's settings for the gap that comes and goes: a short stuck timeout, and no time
+// limit but the one a test sets.
+ExploreParams gap_chase_params() {
+  ExploreParams params = no_look_params(100, 60);
+  params.explore.stuck_timeout_s = 10.0;
+  params.explore.goal_time_factor = 0.0;
+  return params;
+}
+
 // Progress along each new plan resets the stuck timer, and a goal's time limit grows with its
 // longest plan: a robot going back and forth between two routes comes no nearer to its goal
 // and would go on to its time limit. With net_progress_timeout_s it fails after that long
@@ -1131,9 +1140,7 @@ double chase_the_gap(Explorer& explorer, GapThatComesAndGoes& scene, double unti
 TEST(Explorer, ARobotGoingBackAndForthBetweenTwoRoutesFailsWithoutNetProgress) {
   for (const double timeout_s : {30.0, 0.0}) {
     GapThatComesAndGoes scene;
-    ExploreParams params = no_look_params(100, 60);
-    params.explore.stuck_timeout_s = 10.0;
-    params.explore.goal_time_factor = 0.0;
+    ExploreParams params = gap_chase_params();
     params.explore.net_progress_timeout_s = timeout_s;
     Explorer explorer(params);
     const double failed_s = chase_the_gap(explorer, scene, 240.0);
@@ -1156,9 +1163,7 @@ TEST(Explorer, ARobotGoingBackAndForthBetweenTwoRoutesFailsWithoutNetProgress) {
 // max_blocked_plans the goal fails at that many blocked plans, long before its time limit.
 TEST(Explorer, AGoalWhosePlansKeepBeingBlockedFailsAtTheLimit) {
   GapThatComesAndGoes scene;
-  ExploreParams params = no_look_params(100, 60);
-  params.explore.stuck_timeout_s = 10.0;
-  params.explore.goal_time_factor = 0.0;
+  ExploreParams params = gap_chase_params();
   params.explore.max_blocked_plans = 3;
   Explorer explorer(params);
   const double failed_s = chase_the_gap(explorer, scene, 240.0);
@@ -1185,8 +1190,7 @@ TEST(Explorer, WithTheFirstPlansTimeLimitAGoalWhosePlansGrowFailsSooner) {
   double failed_s[2] = {-1.0, -1.0};
   for (const bool first : {true, false}) {
     GapThatComesAndGoes scene;
-    ExploreParams params = no_look_params(100, 60);
-    params.explore.stuck_timeout_s = 10.0;
+    ExploreParams params = gap_chase_params();
     params.explore.goal_time_factor = 1.0;
     params.explore.goal_time_first_plan = first;
     Explorer explorer(params);
