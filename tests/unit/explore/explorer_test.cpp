@@ -1193,9 +1193,9 @@ TEST(Explorer, WithTheFirstPlansTimeLimitAGoalWhosePlansGrowFailsSooner) {
     ExploreParams params = gap_chase_params();
     params.explore.goal_time_factor = 1.0;
     params.explore.goal_time_first_plan = first;
-    Explorer explorer(params);
-    explorer.step(input_at(scene.grid.view(), 1.0, 4.3, 0.0, 0.0, true));
-    const std::vector<Eigen::Vector2d> plan = plan_of(explorer);
+    Explorer twin(params);  // the first plan, as the chase's explorer makes it at its start
+    twin.step(input_at(scene.grid.view(), 1.0, 4.3, 0.0, 0.0, true));
+    const std::vector<Eigen::Vector2d> plan = plan_of(twin);
     const double first_plan_m = (plan.front() - Eigen::Vector2d(1.0, 4.3)).norm() + length_of(plan);
     Explorer fresh(params);
     failed_s[first ? 0 : 1] = chase_the_gap(fresh, scene, 400.0);
