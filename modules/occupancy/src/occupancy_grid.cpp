@@ -42,7 +42,8 @@ LogOddsModel LogOddsModel::from_config(const core::GridConfig& config) {
           static_cast<float>(config.log_odds_min), static_cast<float>(config.log_odds_max),
           static_cast<float>(config.in_view_range_m), static_cast<float>(config.looked_over_range_m),
           static_cast<float>(config.free_end_sigmas), static_cast<float>(config.free_end_short_m),
-          static_cast<float>(config.hit_full_weight_range_m), config.once_per_scan};
+          static_cast<float>(config.hit_full_weight_range_m), static_cast<float>(config.obstacle_miss_range_m),
+          config.once_per_scan};
 }
 
 CellThresholds CellThresholds::from_config(const core::GridConfig& config) {
@@ -382,7 +383,10 @@ void OccupancyGrid::insert_column(const Eigen::Vector2d& origin, const Eigen::Ve
   const Eigen::Vector2d stop = obstacle ? end : at(reach);
   // A free column's end may lie beyond the wall behind it by its range error (see the header).
   const double uncertain = obstacle ? 0.0 : model_.free_end_sigmas * point.end_range_sigma_m();
-  const double firm = uncertain > 0.0 ? length - uncertain - visible_from : kAlwaysFirm;
+  double firm = uncertain > 0.0 ? length - uncertain - visible_from : kAlwaysFirm;
+  // Far misses spare obstacles: a far ray's error across its way is the pose's heading error
+  // times its range, and along a corridor the rays that cross its walls are the far ones.
+  if (model_.obstacle_miss_range_m > 0.0F) firm = std::min(firm, model_.obstacle_miss_range_m - visible_from);
   cast_ray(start.x(), start.y(), stop.x(), stop.y(), obstacle, point.obstacle_at_camera_height, hit_log_odds(length),
            firm);
 }

@@ -132,6 +132,33 @@ TEST(OccupancyGrid, AFreeColumnsUncertainEndDoesNotEraseAWallButClearsUnknownCel
   }
 }
 
+// A wall at cell 15 (0.5 m from the camera) and a low box at cell 13 (0.3 m), each seen
+// once; then five views of floor out to 0.8 m, whose floor shows from 0.2 m. With
+// obstacle_miss_range_m at 0.4 m, the misses lower the box's cell (within 0.4 m of the camera,
+// not of where the floor shows) but spare the wall's, and still clear the free and unknown
+// cells out to the floor's end.
+TEST(OccupancyGrid, WithAnObstacleMissRangeFarMissesSpareObstaclesAndNearOnesLowerThem) {
+  LogOddsModel model;
+  model.obstacle_miss_range_m = 0.4F;
+  const core::Pose2 pose{0.05, 0.05, 0.0};  // the camera in cell (10, 10)
+  for (const bool guarded : {true, false}) {
+    OccupancyGrid grid(small_geometry(), guarded ? model : LogOddsModel{});
+    grid.insert(one_column(0.5F, 0.0F, Kind::obstacle), pose);  // the wall: cell (15, 10)
+    grid.insert(one_column(0.3F, 0.0F, Kind::obstacle), pose);  // the box: cell (13, 10)
+    core::DepthScan floor = one_column(0.8F, 0.0F, Kind::free);  // misses cells 12-17
+    floor.columns[0].floor_visible_from_m = 0.2F;
+    for (int view = 0; view < 5; ++view) grid.insert(floor, pose);
+    EXPECT_FLOAT_EQ(grid.log_odds(13, 10), -0.4F + 0.85F + 5 * -0.4F);  // near: lowered
+    EXPECT_FLOAT_EQ(grid.log_odds(14, 10), 6 * -0.4F);                  // free: cleared
+    EXPECT_FLOAT_EQ(grid.log_odds(17, 10), 5 * -0.4F);                  // unknown: cleared
+    if (guarded) {
+      EXPECT_FLOAT_EQ(grid.log_odds(15, 10), 0.85F);  // 0.5 m from the camera: spared
+    } else {
+      EXPECT_FLOAT_EQ(grid.log_odds(15, 10), 0.85F + 5 * -0.4F);
+    }
+  }
+}
+
 // A wall at x = 0.6 m (cell 16) seen head on; then a scan whose 12 columns graze along it (all
 // through cell (16, 10), ending beyond it), as a view along a corridor wall from a pose a little
 // off puts them. With once_per_scan that scan lowers the wall's cell once, not twelve times;

@@ -27,6 +27,10 @@
 //     every wall and in every door seen from afar, which closed the doors. Off by default:
 //     measured on the office it kept smeared jamb cells and a person's trace too, and
 //     lowered coverage (docs/results.md);
+//   - with obstacle_miss_range_m, misses farther than that from the camera lower no cell
+//     that holds an obstacle (log-odds above 0) and clear unknown and free cells only: a
+//     far ray's error across its way is the heading's error times its range, and the rays
+//     that reach a corridor's blank walls are far ones at a slant. Off by default;
 //   - invalid columns change nothing, and no column changes a cell nearer than its
 //     measurable_from_m (the part of the view the other camera does not share, or beyond
 //     the matcher's largest disparity): it could not have seen an obstacle there.
@@ -103,6 +107,7 @@ struct LogOddsModel {
   float free_end_sigmas = 0.0F;  // grid.free_end_sigmas (0: a free column's misses are all alike)
   float free_end_short_m = 0.0F;  // grid.free_end_short_m (0: a cell short)
   float hit_full_weight_range_m = 0.0F;  // grid.hit_full_weight_range_m (0: every hit in full)
+  float obstacle_miss_range_m = 0.0F;  // grid.obstacle_miss_range_m (0: misses lower obstacles at any range)
   bool once_per_scan = false;    // grid.once_per_scan (see the header comment)
   static LogOddsModel from_config(const core::GridConfig& config);
 };
