@@ -11,8 +11,6 @@
 namespace stereoscout::occupancy {
 namespace {
 
-constexpr double kAlwaysFirm = std::numeric_limits<double>::infinity();
-
 // A ray whose end cell lies further than this many grid spans from the grid is a broken
 // measurement (or a units bug), not geometry: skipping it bounds the line walk.
 constexpr double kFarLimitInGridSpans = 4.0;
@@ -42,7 +40,7 @@ LogOddsModel LogOddsModel::from_config(const core::GridConfig& config) {
           static_cast<float>(config.log_odds_min), static_cast<float>(config.log_odds_max),
           static_cast<float>(config.in_view_range_m), static_cast<float>(config.looked_over_range_m),
           static_cast<float>(config.free_end_sigmas), static_cast<float>(config.free_end_short_m),
-          static_cast<float>(config.hit_full_weight_range_m), static_cast<float>(config.obstacle_miss_range_m),
+          static_cast<float>(config.hit_full_weight_range_m), static_cast<float>(config.near_hit_hold_range_m),
           config.once_per_scan};
 }
 
@@ -179,11 +177,14 @@ void OccupancyGrid::add(int cell_x, int cell_y, float delta) {
   cell = std::clamp(cell + delta, model_.min, model_.max);
 }
 
-void OccupancyGrid::hit(int cell_x, int cell_y, bool at_camera_height, float log_odds) {
+void OccupancyGrid::hit(int cell_x, int cell_y, bool at_camera_height, float log_odds, bool holds) {
   if (!geometry_.contains(cell_x, cell_y)) return;
   add(cell_x, cell_y, log_odds);
   std::uint8_t& flags = cell_flags_[index(cell_x, cell_y)];
-  flags = static_cast<std::uint8_t>((flags & (kHitThisScan | kInView | kLookedOver)) | (at_camera_height ? kLastHitAtCameraHeight : 0U));
+  const std::uint8_t kept = at_camera_height ? (kHitThisScan | kInView | kLookedOver)
+                                             : (kHitThisScan | kInView | kLookedOver | kHeldByNearHit);
+  flags = static_cast<std::uint8_t>((flags & kept) | (at_camera_height ? kLastHitAtCameraHeight : 0U) |
+                                    (holds && !at_camera_height ? kHeldByNearHit : 0U));
 }
 
 // Stereo's range error grows with the square of the range: beyond the full-weight range a
@@ -264,6 +265,12 @@ bool OccupancyGrid::marked_hit_this_scan(int cell_x, int cell_y) const {
   return (cell_flags_[index(cell_x, cell_y)] & kHitThisScan) != 0U;
 }
 
+bool OccupancyGrid::held_by_near_hit(int cell_x, int cell_y) const {
+  if (!geometry_.contains(cell_x, cell_y)) return false;
+  const std::size_t i = index(cell_x, cell_y);
+  return cells_[i] > 0.0F && (cell_flags_[i] & kHeldByNearHit) != 0U;
+}
+
 void OccupancyGrid::miss(int cell_x, int cell_y) {
   if (!geometry_.contains(cell_x, cell_y) || marked_hit_this_scan(cell_x, cell_y)) return;
   if (miss_stamps_) {
@@ -272,6 +279,8 @@ void OccupancyGrid::miss(int cell_x, int cell_y) {
     if (cells_[i] > 0.0F && (cell_flags_[i] & kLastHitAtCameraHeight) == 0U) miss_stamps_[i] = scan_number_;
   }
   add(cell_x, cell_y, model_.miss);
+  const std::size_t i = index(cell_x, cell_y);
+  if (cells_[i] <= 0.0F) cell_flags_[i] = static_cast<std::uint8_t>(cell_flags_[i] & ~kHeldByNearHit);
 }
 
 void OccupancyGrid::miss_unless_occupied(int cell_x, int cell_y) {
@@ -279,9 +288,8 @@ void OccupancyGrid::miss_unless_occupied(int cell_x, int cell_y) {
   miss(cell_x, cell_y);
 }
 
-// Every cell but the last is passed through (miss); the last is where the column ends.
 void OccupancyGrid::cast_ray(double start_x, double start_y, double end_x, double end_y, bool end_is_obstacle,
-                             bool at_camera_height, float end_log_odds, double firm_m) {
+                             const RayRules& rules) {
   GridSegment segment;
   if (!grid_coordinates(start_x, start_y, end_x, end_y, segment)) {
     ++counts_.rays_rejected;
@@ -290,8 +298,9 @@ void OccupancyGrid::cast_ray(double start_x, double start_y, double end_x, doubl
   ++counts_.rays;
   if (misses_grid(segment)) return;  // a tile of the scan archive, away from this ray
   const double length = std::hypot(segment.x1 - segment.x0, segment.y1 - segment.y0);
-  const double firm = firm_m / geometry_.resolution_m;
-  const bool guarded = std::isfinite(firm);
+  const double firm = rules.firm_m / geometry_.resolution_m;
+  const double held_beyond = rules.held_beyond_m / geometry_.resolution_m;
+  const bool guarded = std::isfinite(firm) || std::isfinite(held_beyond);
   // How far along the ray a cell's centre lies, in cells.
   const auto along = [&](int x, int y) {
     if (length <= 0.0) return 0.0;
@@ -299,7 +308,13 @@ void OccupancyGrid::cast_ray(double start_x, double start_y, double end_x, doubl
            length;
   };
   const auto pass = [&](int x, int y) {
-    if (guarded && along(x, y) > firm) {
+    if (!guarded) {
+      miss(x, y);
+      return;
+    }
+    const double at = along(x, y);
+    if (at > held_beyond && held_by_near_hit(x, y)) return;
+    if (at > firm) {
       miss_unless_occupied(x, y);
     } else {
       miss(x, y);
@@ -309,7 +324,7 @@ void OccupancyGrid::cast_ray(double start_x, double start_y, double end_x, doubl
   const int x1 = static_cast<int>(std::floor(segment.x1));
   const int y1 = static_cast<int>(std::floor(segment.y1));
   if (end_is_obstacle) {
-    hit(x1, y1, at_camera_height, end_log_odds);
+    hit(x1, y1, rules.at_camera_height, rules.end_log_odds, rules.end_holds);
   } else {
     pass(x1, y1);
   }
@@ -373,9 +388,13 @@ void OccupancyGrid::insert_column(const Eigen::Vector2d& origin, const Eigen::Ve
   if (in_view_end > visible_from) mark_cells(at(visible_from), at(in_view_end), kInView);
   const double looked_over_end = std::min<double>(model_.looked_over_range_m, length);
   if (looked_over_end > 0.0) mark_cells(origin, at(looked_over_end), kLookedOver);
+  RayRules rules;
+  rules.at_camera_height = point.obstacle_at_camera_height;
+  rules.end_log_odds = hit_log_odds(length);
+  const double hold_range = model_.near_hit_hold_range_m;
+  rules.end_holds = hold_range > 0.0 && length <= hold_range;
   if (obstacle && length <= visible_from) {
-    cast_ray(end.x(), end.y(), end.x(), end.y(), true, point.obstacle_at_camera_height, hit_log_odds(length),
-             kAlwaysFirm);  // its own cell only
+    cast_ray(end.x(), end.y(), end.x(), end.y(), true, rules);  // its own cell only
     return;
   }
   if (!obstacle && !(reach > visible_from)) return;  // no visible floor on this ray
@@ -383,12 +402,10 @@ void OccupancyGrid::insert_column(const Eigen::Vector2d& origin, const Eigen::Ve
   const Eigen::Vector2d stop = obstacle ? end : at(reach);
   // A free column's end may lie beyond the wall behind it by its range error (see the header).
   const double uncertain = obstacle ? 0.0 : model_.free_end_sigmas * point.end_range_sigma_m();
-  double firm = uncertain > 0.0 ? length - uncertain - visible_from : kAlwaysFirm;
-  // Far misses spare obstacles: a far ray's error across its way is the pose's heading error
-  // times its range, and along a corridor the rays that cross its walls are the far ones.
-  if (model_.obstacle_miss_range_m > 0.0F) firm = std::min(firm, model_.obstacle_miss_range_m - visible_from);
-  cast_ray(start.x(), start.y(), stop.x(), stop.y(), obstacle, point.obstacle_at_camera_height, hit_log_odds(length),
-           firm);
+  if (uncertain > 0.0) rules.firm_m = length - uncertain - visible_from;
+  // A far ray's error across its way is the heading's error times its range (see the header).
+  if (hold_range > 0.0) rules.held_beyond_m = hold_range - visible_from;
+  cast_ray(start.x(), start.y(), stop.x(), stop.y(), obstacle, rules);
 }
 
 void OccupancyGrid::mark_cells(const Eigen::Vector2d& from, const Eigen::Vector2d& to, std::uint8_t flag) {

@@ -132,30 +132,40 @@ TEST(OccupancyGrid, AFreeColumnsUncertainEndDoesNotEraseAWallButClearsUnknownCel
   }
 }
 
-// A wall at cell 15 (0.5 m from the camera) and a low box at cell 13 (0.3 m), each seen
-// once; then five views of floor out to 0.8 m, whose floor shows from 0.2 m. With
-// obstacle_miss_range_m at 0.4 m, the misses lower the box's cell (within 0.4 m of the camera,
-// not of where the floor shows) but spare the wall's, and still clear the free and unknown
-// cells out to the floor's end.
-TEST(OccupancyGrid, WithAnObstacleMissRangeFarMissesSpareObstaclesAndNearOnesLowerThem) {
+// With near_hit_hold_range_m at 0.6 m, from a camera at A (cell 10) and one 0.5 m behind it at
+// B (cell 5): a blank wall's base hit from A at 0.5 m (cell 15) holds its cell against five
+// views of floor beyond it from B, whose misses pass it 1.0 m from their camera, while a
+// phantom hit from B at 0.8 m (cell 13) and a person hit at the camera's height (cell 12) are
+// lowered by them, as are free and unknown cells. Misses from A, within 0.6 m, lower the wall;
+// once they bring it to log-odds 0 or below, a far hit there no longer holds against far misses.
+TEST(OccupancyGrid, ANearHitHoldsItsCellAgainstFarMissesButNotNearOnes) {
   LogOddsModel model;
-  model.obstacle_miss_range_m = 0.4F;
-  const core::Pose2 pose{0.05, 0.05, 0.0};  // the camera in cell (10, 10)
-  for (const bool guarded : {true, false}) {
-    OccupancyGrid grid(small_geometry(), guarded ? model : LogOddsModel{});
-    grid.insert(one_column(0.5F, 0.0F, Kind::obstacle), pose);  // the wall: cell (15, 10)
-    grid.insert(one_column(0.3F, 0.0F, Kind::obstacle), pose);  // the box: cell (13, 10)
-    core::DepthScan floor = one_column(0.8F, 0.0F, Kind::free);  // misses cells 12-17
-    floor.columns[0].floor_visible_from_m = 0.2F;
-    for (int view = 0; view < 5; ++view) grid.insert(floor, pose);
-    EXPECT_FLOAT_EQ(grid.log_odds(13, 10), -0.4F + 0.85F + 5 * -0.4F);  // near: lowered
-    EXPECT_FLOAT_EQ(grid.log_odds(14, 10), 6 * -0.4F);                  // free: cleared
-    EXPECT_FLOAT_EQ(grid.log_odds(17, 10), 5 * -0.4F);                  // unknown: cleared
-    if (guarded) {
-      EXPECT_FLOAT_EQ(grid.log_odds(15, 10), 0.85F);  // 0.5 m from the camera: spared
-    } else {
+  model.near_hit_hold_range_m = 0.6F;
+  const core::Pose2 near_pose{0.05, 0.05, 0.0};
+  const core::Pose2 far_pose{-0.45, 0.05, 0.0};
+  const core::DepthScan far_floor = one_column(1.3F, 0.0F, Kind::free);  // from B: misses cells 5-17
+  for (const bool holding : {true, false}) {
+    OccupancyGrid grid(small_geometry(), holding ? model : LogOddsModel{});
+    grid.insert(one_column(0.5F, 0.0F, Kind::obstacle), near_pose);  // the wall: cell 15
+    grid.insert(one_column(0.8F, 0.0F, Kind::obstacle), far_pose);   // a phantom: cell 13
+    core::DepthScan person = one_column(0.2F, 0.0F, Kind::obstacle);  // cell 12
+    person.columns[0].obstacle_at_camera_height = true;
+    grid.insert(person, near_pose);
+    for (int view = 0; view < 5; ++view) grid.insert(far_floor, far_pose);
+    EXPECT_FLOAT_EQ(grid.log_odds(12, 10), 2 * -0.4F + 0.85F + 5 * -0.4F);  // the person: lowered
+    EXPECT_FLOAT_EQ(grid.log_odds(13, 10), -0.4F + 0.85F + 5 * -0.4F);      // the phantom: lowered
+    EXPECT_FLOAT_EQ(grid.log_odds(17, 10), 5 * -0.4F);                      // unknown: cleared
+    if (!holding) {
       EXPECT_FLOAT_EQ(grid.log_odds(15, 10), 0.85F + 5 * -0.4F);
+      continue;
     }
+    EXPECT_FLOAT_EQ(grid.log_odds(15, 10), 0.85F);  // the wall: held
+    const core::DepthScan near_floor = one_column(0.8F, 0.0F, Kind::free);  // from A: misses cells 10-17
+    for (int view = 0; view < 3; ++view) grid.insert(near_floor, near_pose);
+    EXPECT_FLOAT_EQ(grid.log_odds(15, 10), 0.85F + 3 * -0.4F);
+    grid.insert(one_column(1.0F, 0.0F, Kind::obstacle), far_pose);  // a far hit on cell 15
+    grid.insert(far_floor, far_pose);
+    EXPECT_FLOAT_EQ(grid.log_odds(15, 10), 0.85F + 3 * -0.4F + 0.85F - 0.4F);  // not held: lowered
   }
 }
 

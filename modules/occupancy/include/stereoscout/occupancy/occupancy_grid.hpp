@@ -27,10 +27,12 @@
 //     every wall and in every door seen from afar, which closed the doors. Off by default:
 //     measured on the office it kept smeared jamb cells and a person's trace too, and
 //     lowered coverage (docs/results.md);
-//   - with obstacle_miss_range_m, misses farther than that from the camera lower no cell
-//     that holds an obstacle (log-odds above 0) and clear unknown and free cells only: a
-//     far ray's error across its way is the heading's error times its range, and the rays
-//     that reach a corridor's blank walls are far ones at a slant. Off by default;
+//   - with near_hit_hold_range_m, a low obstacle's hit (not at the camera's height: a blank
+//     wall seen by its base) from within that range of the camera holds its cell: misses
+//     from farther than that pass it by, until a nearer miss lowers it to log-odds 0 or a
+//     hit at the camera's height replaces it. A far ray's error across its way is the
+//     heading's error times its range, and the rays that reach a corridor's blank walls are
+//     far ones at a slant. Far hits and people stay for far misses to clear. Off by default;
 //   - invalid columns change nothing, and no column changes a cell nearer than its
 //     measurable_from_m (the part of the view the other camera does not share, or beyond
 //     the matcher's largest disparity): it could not have seen an obstacle there.
@@ -70,6 +72,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <memory>
 
 #include "stereoscout/core/config/grid.hpp"
@@ -107,7 +110,7 @@ struct LogOddsModel {
   float free_end_sigmas = 0.0F;  // grid.free_end_sigmas (0: a free column's misses are all alike)
   float free_end_short_m = 0.0F;  // grid.free_end_short_m (0: a cell short)
   float hit_full_weight_range_m = 0.0F;  // grid.hit_full_weight_range_m (0: every hit in full)
-  float obstacle_miss_range_m = 0.0F;  // grid.obstacle_miss_range_m (0: misses lower obstacles at any range)
+  float near_hit_hold_range_m = 0.0F;  // grid.near_hit_hold_range_m (0: misses lower obstacles at any range)
   bool once_per_scan = false;    // grid.once_per_scan (see the header comment)
   static LogOddsModel from_config(const core::GridConfig& config);
 };
@@ -236,9 +239,19 @@ class OccupancyGrid {
   static constexpr int kLookedOverBit = 3;
   static constexpr std::uint8_t kInView = 1U << kInViewBit;          // a column's view covered the cell
   static constexpr std::uint8_t kLookedOver = 1U << kLookedOverBit;  // a column's ray passed over it, blind zone too
+  static constexpr std::uint8_t kHeldByNearHit = 16U;  // near_hit_hold_range_m: far misses pass the cell by
+  static constexpr double kNoLimit = std::numeric_limits<double>::infinity();
+  // How a ray treats its cells (insert_column sets it from the model).
+  struct RayRules {
+    bool at_camera_height = false;  // the end's obstacle point
+    float end_log_odds = 0.0F;      // an obstacle end adds this
+    bool end_holds = false;         // an obstacle end holds its cell (near_hit_hold_range_m)
+    double firm_m = kNoLimit;       // beyond this along the ray: miss_unless_occupied
+    double held_beyond_m = kNoLimit;  // beyond this along the ray: cells held by a near hit are passed by
+  };
 
   void add(int cell_x, int cell_y, float delta);
-  void hit(int cell_x, int cell_y, bool at_camera_height, float log_odds);
+  void hit(int cell_x, int cell_y, bool at_camera_height, float log_odds, bool holds);
   // An obstacle end's log-odds at this range from the camera (hit_full_weight_range_m).
   float hit_log_odds(double range_m) const;
   // log_odds_miss, unless a column of the scan being inserted ends in the cell.
@@ -246,6 +259,8 @@ class OccupancyGrid {
   // The same, but not to a cell that holds an obstacle (log-odds above 0).
   void miss_unless_occupied(int cell_x, int cell_y);
   bool marked_hit_this_scan(int cell_x, int cell_y) const;
+  // Holds an obstacle (log-odds above 0) that a near hit put there (near_hit_hold_range_m).
+  bool held_by_near_hit(int cell_x, int cell_y) const;
   // once_per_scan: starts the numbering of a new scan's misses.
   void begin_scan();
   void set_hit_marks(const Eigen::Vector2d& end, bool marked);
@@ -254,10 +269,9 @@ class OccupancyGrid {
   bool misses_grid(const GridSegment& segment) const;
   template <typename EachPoint>
   void insert_points(const ScanFrame& frame, EachPoint&& each_point);
-  // Cells whose centre lies farther than firm_m along the ray from its start get
-  // miss_unless_occupied instead of miss (infinity: none). An obstacle end adds end_log_odds.
-  void cast_ray(double start_x, double start_y, double end_x, double end_y, bool end_is_obstacle,
-                bool at_camera_height, float end_log_odds, double firm_m);
+  // Every cell but the last is passed through (a miss, by `rules`); the last is where the
+  // column ends.
+  void cast_ray(double start_x, double start_y, double end_x, double end_y, bool end_is_obstacle, const RayRules& rules);
   // Misses, before the end cell, only the cells whose last hit was at the camera's height.
   void clear_camera_height_hits(double start_x, double start_y, double end_x, double end_y);
   // One column: origin and end point in the map frame.
@@ -268,7 +282,7 @@ class OccupancyGrid {
   GridGeometry geometry_;
   LogOddsModel model_;
   std::unique_ptr<float[]> cells_;
-  std::unique_ptr<std::uint8_t[]> cell_flags_;  // kLastHitAtCameraHeight | kHitThisScan | kInView | kLookedOver
+  std::unique_ptr<std::uint8_t[]> cell_flags_;  // kLastHitAtCameraHeight | kHitThisScan | kInView | kLookedOver | kHeldByNearHit
   // once_per_scan: the number of the scan that last missed each cell, against scan_number_
   // (counts inserts from 1, wraps to 1 after 255 with every stamp reset); empty otherwise.
   // Scratch of one insert: never copied, compared or pasted.
