@@ -11,6 +11,8 @@
 namespace stereoscout::occupancy {
 namespace {
 
+float logit(double probability) { return static_cast<float>(std::log(probability / (1.0 - probability))); }
+
 // A ray whose end cell lies further than this many grid spans from the grid is a broken
 // measurement (or a units bug), not geometry: skipping it bounds the line walk.
 constexpr double kFarLimitInGridSpans = 4.0;
@@ -41,7 +43,7 @@ LogOddsModel LogOddsModel::from_config(const core::GridConfig& config) {
           static_cast<float>(config.in_view_range_m), static_cast<float>(config.looked_over_range_m),
           static_cast<float>(config.free_end_sigmas), static_cast<float>(config.free_end_short_m),
           static_cast<float>(config.hit_full_weight_range_m), static_cast<float>(config.near_hit_hold_range_m),
-          config.once_per_scan};
+          logit(config.free_threshold), config.once_per_scan};
 }
 
 CellThresholds CellThresholds::from_config(const core::GridConfig& config) {
@@ -49,8 +51,6 @@ CellThresholds CellThresholds::from_config(const core::GridConfig& config) {
 }
 
 namespace {
-
-float logit(double probability) { return static_cast<float>(std::log(probability / (1.0 - probability))); }
 
 CellState classify_log_odds(float log_odds, float occupied_above, float free_below) {
   if (log_odds > occupied_above) return CellState::occupied;
@@ -181,10 +181,11 @@ void OccupancyGrid::hit(int cell_x, int cell_y, bool at_camera_height, float log
   if (!geometry_.contains(cell_x, cell_y)) return;
   add(cell_x, cell_y, log_odds);
   std::uint8_t& flags = cell_flags_[index(cell_x, cell_y)];
-  const std::uint8_t kept = at_camera_height ? (kHitThisScan | kInView | kLookedOver)
-                                             : (kHitThisScan | kInView | kLookedOver | kHeldByNearHit);
+  const std::uint8_t kept = at_camera_height ? (kHitThisScan | kInView | kLookedOver | kWasFree)
+                                             : (kHitThisScan | kInView | kLookedOver | kWasFree | kHeldByNearHit);
+  const bool held = holds && !at_camera_height && (flags & kWasFree) == 0U;
   flags = static_cast<std::uint8_t>((flags & kept) | (at_camera_height ? kLastHitAtCameraHeight : 0U) |
-                                    (holds && !at_camera_height ? kHeldByNearHit : 0U));
+                                    (held ? kHeldByNearHit : 0U));
 }
 
 // Stereo's range error grows with the square of the range: beyond the full-weight range a
@@ -281,6 +282,7 @@ void OccupancyGrid::miss(int cell_x, int cell_y) {
   add(cell_x, cell_y, model_.miss);
   const std::size_t i = index(cell_x, cell_y);
   if (cells_[i] <= 0.0F) cell_flags_[i] = static_cast<std::uint8_t>(cell_flags_[i] & ~kHeldByNearHit);
+  if (cells_[i] < model_.free_below) cell_flags_[i] = static_cast<std::uint8_t>(cell_flags_[i] | kWasFree);
 }
 
 void OccupancyGrid::miss_unless_occupied(int cell_x, int cell_y) {

@@ -169,6 +169,27 @@ TEST(OccupancyGrid, ANearHitHoldsItsCellAgainstFarMissesButNotNearOnes) {
   }
 }
 
+// A near hit does not hold a cell that was free: a door's jamb drawn into the doorway by a pose
+// a little off lands on floor seen free before. Floor seen four times out to 0.8 m from A makes
+// cell 14 free; three near hits there then make it occupied, but one far view's miss lowers it,
+// where it passes by cell 13, which was never free (the floor shows from cell 14).
+TEST(OccupancyGrid, ANearHitDoesNotHoldACellThatWasFree) {
+  LogOddsModel model;
+  model.near_hit_hold_range_m = 0.6F;
+  const core::Pose2 near_pose{0.05, 0.05, 0.0};
+  OccupancyGrid grid(small_geometry(), model);
+  core::DepthScan floor = one_column(0.8F, 0.0F, Kind::free);
+  floor.columns[0].floor_visible_from_m = 0.4F;  // from cell 14 on: cell 13 is never missed
+  for (int view = 0; view < 4; ++view) grid.insert(floor, near_pose);
+  EXPECT_FLOAT_EQ(grid.log_odds(14, 10), 4 * -0.4F);
+  core::DepthScan jamb_and_wall = one_column(0.4F, 0.0F, Kind::obstacle);  // cell 14
+  jamb_and_wall.columns.push_back({0.3F, 0.0F, Kind::obstacle});            // cell 13
+  for (int view = 0; view < 3; ++view) grid.insert(jamb_and_wall, near_pose);
+  grid.insert(one_column(1.3F, 0.0F, Kind::free), core::Pose2{-0.45, 0.05, 0.0});  // passes both
+  EXPECT_FLOAT_EQ(grid.log_odds(14, 10), 4 * -0.4F + 3 * 0.85F - 0.4F);
+  EXPECT_FLOAT_EQ(grid.log_odds(13, 10), 3 * 0.85F);
+}
+
 // A wall at x = 0.6 m (cell 16) seen head on; then a scan whose 12 columns graze along it (all
 // through cell (16, 10), ending beyond it), as a view along a corridor wall from a pose a little
 // off puts them. With once_per_scan that scan lowers the wall's cell once, not twelve times;

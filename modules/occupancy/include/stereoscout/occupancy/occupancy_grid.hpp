@@ -28,11 +28,14 @@
 //     measured on the office it kept smeared jamb cells and a person's trace too, and
 //     lowered coverage (docs/results.md);
 //   - with near_hit_hold_range_m, a low obstacle's hit (not at the camera's height: a blank
-//     wall seen by its base) from within that range of the camera holds its cell: misses
-//     from farther than that pass it by, until a nearer miss lowers it to log-odds 0 or a
-//     hit at the camera's height replaces it. A far ray's error across its way is the
-//     heading's error times its range, and the rays that reach a corridor's blank walls are
-//     far ones at a slant. Far hits and people stay for far misses to clear. Off by default;
+//     wall seen by its base) from within that range of the camera holds its cell, unless
+//     the cell was ever free: misses from farther than that pass it by, until a nearer miss
+//     lowers it to log-odds 0 or a hit at the camera's height replaces it. A far ray's error
+//     across its way is the heading's error times its range, and the rays that reach a
+//     corridor's blank walls are far ones at a slant. Far hits and people stay for far
+//     misses to clear, and so do obstacles on cells once free (a door's jamb drawn into it
+//     by a pose a little off: held, it shut a room that the robot then stood too far from to
+//     see clear). Off by default;
 //   - invalid columns change nothing, and no column changes a cell nearer than its
 //     measurable_from_m (the part of the view the other camera does not share, or beyond
 //     the matcher's largest disparity): it could not have seen an obstacle there.
@@ -111,6 +114,7 @@ struct LogOddsModel {
   float free_end_short_m = 0.0F;  // grid.free_end_short_m (0: a cell short)
   float hit_full_weight_range_m = 0.0F;  // grid.hit_full_weight_range_m (0: every hit in full)
   float near_hit_hold_range_m = 0.0F;  // grid.near_hit_hold_range_m (0: misses lower obstacles at any range)
+  float free_below = -1.41F;  // grid.free_threshold's log-odds: a cell below it is free
   bool once_per_scan = false;    // grid.once_per_scan (see the header comment)
   static LogOddsModel from_config(const core::GridConfig& config);
 };
@@ -240,6 +244,7 @@ class OccupancyGrid {
   static constexpr std::uint8_t kInView = 1U << kInViewBit;          // a column's view covered the cell
   static constexpr std::uint8_t kLookedOver = 1U << kLookedOverBit;  // a column's ray passed over it, blind zone too
   static constexpr std::uint8_t kHeldByNearHit = 16U;  // near_hit_hold_range_m: far misses pass the cell by
+  static constexpr std::uint8_t kWasFree = 32U;  // the cell was free once: a near hit does not hold it
   static constexpr double kNoLimit = std::numeric_limits<double>::infinity();
   // How a ray treats its cells (insert_column sets it from the model).
   struct RayRules {
@@ -282,7 +287,7 @@ class OccupancyGrid {
   GridGeometry geometry_;
   LogOddsModel model_;
   std::unique_ptr<float[]> cells_;
-  std::unique_ptr<std::uint8_t[]> cell_flags_;  // kLastHitAtCameraHeight | kHitThisScan | kInView | kLookedOver | kHeldByNearHit
+  std::unique_ptr<std::uint8_t[]> cell_flags_;  // kLastHitAtCameraHeight | kHitThisScan | kInView | kLookedOver | kHeldByNearHit | kWasFree
   // once_per_scan: the number of the scan that last missed each cell, against scan_number_
   // (counts inserts from 1, wraps to 1 after 255 with every stamp reset); empty otherwise.
   // Scratch of one insert: never copied, compared or pasted.
