@@ -282,6 +282,12 @@ void OccupancyGrid::miss(int cell_x, int cell_y) {
   add(cell_x, cell_y, model_.miss);
   const std::size_t i = index(cell_x, cell_y);
   if (cells_[i] <= 0.0F) cell_flags_[i] = static_cast<std::uint8_t>(cell_flags_[i] & ~kHeldByNearHit);
+}
+
+void OccupancyGrid::near_miss(int cell_x, int cell_y) {
+  miss(cell_x, cell_y);
+  if (!geometry_.contains(cell_x, cell_y)) return;
+  const std::size_t i = index(cell_x, cell_y);
   if (cells_[i] < model_.free_below) cell_flags_[i] = static_cast<std::uint8_t>(cell_flags_[i] | kWasFree);
 }
 
@@ -315,9 +321,12 @@ void OccupancyGrid::cast_ray(double start_x, double start_y, double end_x, doubl
       return;
     }
     const double at = along(x, y);
-    if (at > held_beyond && held_by_near_hit(x, y)) return;
+    const bool near = at <= held_beyond;
+    if (!near && held_by_near_hit(x, y)) return;
     if (at > firm) {
       miss_unless_occupied(x, y);
+    } else if (near && std::isfinite(held_beyond)) {
+      near_miss(x, y);
     } else {
       miss(x, y);
     }

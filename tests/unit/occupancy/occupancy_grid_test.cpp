@@ -169,11 +169,12 @@ TEST(OccupancyGrid, ANearHitHoldsItsCellAgainstFarMissesButNotNearOnes) {
   }
 }
 
-// A near hit does not hold a cell that was free: a door's jamb drawn into the doorway by a pose
-// a little off lands on floor seen free before. Floor seen four times out to 0.8 m from A makes
-// cell 14 free; three near hits there then make it occupied, but one far view's miss lowers it,
-// where it passes by cell 13, which was never free (the floor shows from cell 14).
-TEST(OccupancyGrid, ANearHitDoesNotHoldACellThatWasFree) {
+// A near hit does not hold a cell that near views saw free: a door's jamb drawn into the
+// doorway by a pose a little off lands on floor seen free before. Floor seen four times out to
+// 0.8 m from A makes cell 14 free; three near hits there then make it occupied, but one far
+// view's miss lowers it, where it passes by cell 13, which was never free (the floor shows
+// from cell 14).
+TEST(OccupancyGrid, ANearHitDoesNotHoldACellThatNearViewsSawFree) {
   LogOddsModel model;
   model.near_hit_hold_range_m = 0.6F;
   const core::Pose2 near_pose{0.05, 0.05, 0.0};
@@ -188,6 +189,14 @@ TEST(OccupancyGrid, ANearHitDoesNotHoldACellThatWasFree) {
   grid.insert(one_column(1.3F, 0.0F, Kind::free), core::Pose2{-0.45, 0.05, 0.0});  // passes both
   EXPECT_FLOAT_EQ(grid.log_odds(14, 10), 4 * -0.4F + 3 * 0.85F - 0.4F);
   EXPECT_FLOAT_EQ(grid.log_odds(13, 10), 3 * 0.85F);
+  // A row up: far views leave cell (16, 11) free, as grazing rays wear a blank wall away. Two near
+  // hits there then hold it: far misses do not count as the cell seen free.
+  const core::Pose2 far_row{-0.45, 0.15, 0.0};
+  for (int view = 0; view < 4; ++view) grid.insert(one_column(1.3F, 0.0F, Kind::free), far_row);
+  const core::DepthScan wall = one_column(0.56F, 0.0F, Kind::obstacle);  // cell (16, 11), 0.56 m
+  for (int view = 0; view < 2; ++view) grid.insert(wall, core::Pose2{0.05, 0.15, 0.0});
+  grid.insert(one_column(1.3F, 0.0F, Kind::free), far_row);
+  EXPECT_FLOAT_EQ(grid.log_odds(16, 11), 4 * -0.4F + 2 * 0.85F);
 }
 
 // A wall at x = 0.6 m (cell 16) seen head on; then a scan whose 12 columns graze along it (all

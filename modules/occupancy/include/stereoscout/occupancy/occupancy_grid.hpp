@@ -29,13 +29,14 @@
 //     lowered coverage (docs/results.md);
 //   - with near_hit_hold_range_m, a low obstacle's hit (not at the camera's height: a blank
 //     wall seen by its base) from within that range of the camera holds its cell, unless
-//     the cell was ever free: misses from farther than that pass it by, until a nearer miss
+//     misses from within that range once left the cell free: misses from farther than that pass it by, until a nearer miss
 //     lowers it to log-odds 0 or a hit at the camera's height replaces it. A far ray's error
 //     across its way is the heading's error times its range, and the rays that reach a
 //     corridor's blank walls are far ones at a slant. Far hits and people stay for far
-//     misses to clear, and so do obstacles on cells once free (a door's jamb drawn into it
-//     by a pose a little off: held, it shut a room that the robot then stood too far from to
-//     see clear). Off by default;
+//     misses to clear, and so do obstacles on cells that near views saw free (a door's jamb
+//     drawn into it by a pose a little off: held, it shut a room that the robot then stood
+//     too far from to see clear). Far misses that leave a cell free do not count: they are
+//     how a blank wall is worn away. Off by default;
 //   - invalid columns change nothing, and no column changes a cell nearer than its
 //     measurable_from_m (the part of the view the other camera does not share, or beyond
 //     the matcher's largest disparity): it could not have seen an obstacle there.
@@ -244,7 +245,7 @@ class OccupancyGrid {
   static constexpr std::uint8_t kInView = 1U << kInViewBit;          // a column's view covered the cell
   static constexpr std::uint8_t kLookedOver = 1U << kLookedOverBit;  // a column's ray passed over it, blind zone too
   static constexpr std::uint8_t kHeldByNearHit = 16U;  // near_hit_hold_range_m: far misses pass the cell by
-  static constexpr std::uint8_t kWasFree = 32U;  // the cell was free once: a near hit does not hold it
+  static constexpr std::uint8_t kWasFree = 32U;  // near misses left it free once: a near hit does not hold it
   static constexpr double kNoLimit = std::numeric_limits<double>::infinity();
   // How a ray treats its cells (insert_column sets it from the model).
   struct RayRules {
@@ -261,6 +262,9 @@ class OccupancyGrid {
   float hit_log_odds(double range_m) const;
   // log_odds_miss, unless a column of the scan being inserted ends in the cell.
   void miss(int cell_x, int cell_y);
+  // A miss from within near_hit_hold_range_m: it also marks the cell free once (kWasFree) if it
+  // leaves it free.
+  void near_miss(int cell_x, int cell_y);
   // The same, but not to a cell that holds an obstacle (log-odds above 0).
   void miss_unless_occupied(int cell_x, int cell_y);
   bool marked_hit_this_scan(int cell_x, int cell_y) const;
