@@ -29,14 +29,14 @@
 //     lowered coverage (docs/results.md);
 //   - with near_hit_hold_range_m, a low obstacle's hit (not at the camera's height: a blank
 //     wall seen by its base) from within that range of the camera holds its cell, unless
-//     misses from within that range once left the cell free: misses from farther than that pass it by, until a nearer miss
-//     lowers it to log-odds 0 or a hit at the camera's height replaces it. A far ray's error
-//     across its way is the heading's error times its range, and the rays that reach a
-//     corridor's blank walls are far ones at a slant. Far hits and people stay for far
-//     misses to clear, and so do obstacles on cells that near views saw free (a door's jamb
-//     drawn into it by a pose a little off: held, it shut a room that the robot then stood
-//     too far from to see clear). Far misses that leave a cell free do not count: they are
-//     how a blank wall is worn away. Off by default;
+//     misses from within that range once left the cell free: misses from farther than that
+//     pass it by, until a nearer miss lowers it to log-odds 0 or a hit at the camera's height
+//     replaces it. A far ray's error across its way is the heading's error times its range,
+//     and the rays that reach a corridor's blank walls are far ones at a slant. Far hits and
+//     people stay for far misses to clear, and so do obstacles on cells that near views saw
+//     free (a door's jamb drawn into it by a pose a little off: held, it shut a room that
+//     the robot then stood too far from to see clear). Far misses that leave a cell free do
+//     not count: they are how a blank wall is worn away. Off by default;
 //   - invalid columns change nothing, and no column changes a cell nearer than its
 //     measurable_from_m (the part of the view the other camera does not share, or beyond
 //     the matcher's largest disparity): it could not have seen an obstacle there.
@@ -280,7 +280,8 @@ class OccupancyGrid {
   void insert_points(const ScanFrame& frame, EachPoint&& each_point);
   // Every cell but the last is passed through (a miss, by `rules`); the last is where the
   // column ends.
-  void cast_ray(double start_x, double start_y, double end_x, double end_y, bool end_is_obstacle, const RayRules& rules);
+  void cast_ray(double start_x, double start_y, double end_x, double end_y, bool end_is_obstacle,
+                const RayRules& rules);
   // Misses, before the end cell, only the cells whose last hit was at the camera's height.
   void clear_camera_height_hits(double start_x, double start_y, double end_x, double end_y);
   // One column: origin and end point in the map frame.
@@ -291,7 +292,8 @@ class OccupancyGrid {
   GridGeometry geometry_;
   LogOddsModel model_;
   std::unique_ptr<float[]> cells_;
-  std::unique_ptr<std::uint8_t[]> cell_flags_;  // kLastHitAtCameraHeight | kHitThisScan | kInView | kLookedOver | kHeldByNearHit | kWasFree
+  // kLastHitAtCameraHeight | kHitThisScan | kInView | kLookedOver | kHeldByNearHit | kWasFree
+  std::unique_ptr<std::uint8_t[]> cell_flags_;
   // once_per_scan: the number of the scan that last missed each cell, against scan_number_
   // (counts inserts from 1, wraps to 1 after 255 with every stamp reset); empty otherwise.
   // Scratch of one insert: never copied, compared or pasted.
