@@ -181,11 +181,14 @@ void OccupancyGrid::hit(int cell_x, int cell_y, bool at_camera_height, float log
   if (!geometry_.contains(cell_x, cell_y)) return;
   add(cell_x, cell_y, log_odds);
   std::uint8_t& flags = cell_flags_[index(cell_x, cell_y)];
-  const std::uint8_t kept = at_camera_height ? (kHitThisScan | kInView | kLookedOver | kWasFree)
-                                             : (kHitThisScan | kInView | kLookedOver | kWasFree | kHeldByNearHit);
-  const bool held = holds && !at_camera_height && (flags & kWasFree) == 0U;
-  flags = static_cast<std::uint8_t>((flags & kept) | (at_camera_height ? kLastHitAtCameraHeight : 0U) |
-                                    (held ? kHeldByNearHit : 0U));
+  // A hit at the camera's height (a person) ends a hold; a low one keeps it, or starts it.
+  const std::uint8_t marks = flags & (kHitThisScan | kInView | kLookedOver | kWasFree);
+  if (at_camera_height) {
+    flags = static_cast<std::uint8_t>(marks | kLastHitAtCameraHeight);
+  } else {
+    const bool held = (flags & kHeldByNearHit) != 0U || (holds && (flags & kWasFree) == 0U);
+    flags = static_cast<std::uint8_t>(marks | (held ? kHeldByNearHit : 0U));
+  }
 }
 
 // Stereo's range error grows with the square of the range: beyond the full-weight range a
@@ -274,13 +277,12 @@ bool OccupancyGrid::held_by_near_hit(int cell_x, int cell_y) const {
 
 void OccupancyGrid::miss(int cell_x, int cell_y) {
   if (!geometry_.contains(cell_x, cell_y) || marked_hit_this_scan(cell_x, cell_y)) return;
+  const std::size_t i = index(cell_x, cell_y);
   if (miss_stamps_) {
-    const std::size_t i = index(cell_x, cell_y);
     if (miss_stamps_[i] == scan_number_) return;  // held a low obstacle and missed once by this scan
     if (cells_[i] > 0.0F && (cell_flags_[i] & kLastHitAtCameraHeight) == 0U) miss_stamps_[i] = scan_number_;
   }
   add(cell_x, cell_y, model_.miss);
-  const std::size_t i = index(cell_x, cell_y);
   if (cells_[i] <= 0.0F) cell_flags_[i] = static_cast<std::uint8_t>(cell_flags_[i] & ~kHeldByNearHit);
 }
 
