@@ -43,7 +43,7 @@ LogOddsModel LogOddsModel::from_config(const core::GridConfig& config) {
           static_cast<float>(config.in_view_range_m), static_cast<float>(config.looked_over_range_m),
           static_cast<float>(config.free_end_sigmas), static_cast<float>(config.free_end_short_m),
           static_cast<float>(config.hit_full_weight_range_m), static_cast<float>(config.near_hit_hold_range_m),
-          logit(config.free_threshold), config.once_per_scan};
+          static_cast<float>(config.near_hit_hold_end_m), logit(config.free_threshold), config.once_per_scan};
 }
 
 CellThresholds CellThresholds::from_config(const core::GridConfig& config) {
@@ -310,6 +310,7 @@ void OccupancyGrid::cast_ray(double start_x, double start_y, double end_x, doubl
   const double length = std::hypot(segment.x1 - segment.x0, segment.y1 - segment.y0);
   const double firm = rules.firm_m / geometry_.resolution_m;
   const double held_beyond = rules.held_beyond_m / geometry_.resolution_m;
+  const double held_from = length - rules.held_within_end_m / geometry_.resolution_m;
   const bool guarded = std::isfinite(firm) || std::isfinite(held_beyond);
   // How far along the ray a cell's centre lies, in cells.
   const auto along = [&](int x, int y) {
@@ -324,7 +325,7 @@ void OccupancyGrid::cast_ray(double start_x, double start_y, double end_x, doubl
     }
     const double at = along(x, y);
     const bool near = at <= held_beyond;
-    if (!near && held_by_near_hit(x, y)) return;
+    if (!near && at >= held_from && held_by_near_hit(x, y)) return;
     if (at > firm) {
       miss_unless_occupied(x, y);
     } else if (near && std::isfinite(held_beyond)) {
@@ -417,7 +418,10 @@ void OccupancyGrid::insert_column(const Eigen::Vector2d& origin, const Eigen::Ve
   const double uncertain = obstacle ? 0.0 : model_.free_end_sigmas * point.end_range_sigma_m();
   if (uncertain > 0.0) rules.firm_m = length - uncertain - visible_from;
   // A far ray's error across its way is the heading's error times its range (see the header).
-  if (hold_range > 0.0) rules.held_beyond_m = hold_range - visible_from;
+  if (hold_range > 0.0) {
+    rules.held_beyond_m = hold_range - visible_from;
+    rules.held_within_end_m = model_.near_hit_hold_end_m;
+  }
   cast_ray(start.x(), start.y(), stop.x(), stop.y(), obstacle, rules);
 }
 

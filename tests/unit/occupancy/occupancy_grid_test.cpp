@@ -169,6 +169,24 @@ TEST(OccupancyGrid, ANearHitHoldsItsCellAgainstFarMissesButNotNearOnes) {
   }
 }
 
+// A far miss passes a held cell by only near its ray's end (near_hit_hold_end_m): the far
+// floor's ray ends 0.2 m beyond the wall's cell 15 (its reach a cell short of 1.3 m). Within
+// 0.3 m of the end the cell stays held; with 0.1 m the ray ran on beyond it, saw through it,
+// and lowers it as any miss does.
+TEST(OccupancyGrid, AFarMissThatRunsOnBeyondAHeldCellLowersIt) {
+  const core::Pose2 near_pose{0.05, 0.05, 0.0};
+  const core::Pose2 far_pose{-0.45, 0.05, 0.0};
+  for (const float end_m : {0.3F, 0.1F}) {
+    LogOddsModel model;
+    model.near_hit_hold_range_m = 0.6F;
+    model.near_hit_hold_end_m = end_m;
+    OccupancyGrid grid(small_geometry(), model);
+    grid.insert(one_column(0.5F, 0.0F, Kind::obstacle), near_pose);  // cell 15
+    for (int view = 0; view < 3; ++view) grid.insert(one_column(1.3F, 0.0F, Kind::free), far_pose);
+    EXPECT_FLOAT_EQ(grid.log_odds(15, 10), end_m > 0.2F ? 0.85F : 0.85F + 3 * -0.4F) << end_m;
+  }
+}
+
 // A near hit does not hold a cell that near views saw free: a door's jamb drawn into the
 // doorway by a pose a little off lands on floor seen free before. Floor seen four times out to
 // 0.8 m from A makes cell 14 free; three near hits there then make it occupied, but one far

@@ -36,7 +36,10 @@
 //     people stay for far misses to clear, and so do obstacles on cells that near views saw
 //     free (a door's jamb drawn into it by a pose a little off: held, it shut a room that
 //     the robot then stood too far from to see clear). Far misses that leave a cell free do
-//     not count: they are how a blank wall is worn away. Off by default;
+//     not count: they are how a blank wall is worn away. A far miss passes a held cell by
+//     only within near_hit_hold_end_m of its ray's end: the rays that wear a wall away end
+//     on it, and one that runs on beyond the cell saw through it (a doorway seen from
+//     inside its room). Off by default;
 //   - invalid columns change nothing, and no column changes a cell nearer than its
 //     measurable_from_m (the part of the view the other camera does not share, or beyond
 //     the matcher's largest disparity): it could not have seen an obstacle there.
@@ -115,6 +118,7 @@ struct LogOddsModel {
   float free_end_short_m = 0.0F;  // grid.free_end_short_m (0: a cell short)
   float hit_full_weight_range_m = 0.0F;  // grid.hit_full_weight_range_m (0: every hit in full)
   float near_hit_hold_range_m = 0.0F;  // grid.near_hit_hold_range_m (0: misses lower obstacles at any range)
+  float near_hit_hold_end_m = 1.5F;  // grid.near_hit_hold_end_m
   float free_below = -1.41F;  // grid.free_threshold's log-odds: a cell below it is free
   bool once_per_scan = false;    // grid.once_per_scan (see the header comment)
   static LogOddsModel from_config(const core::GridConfig& config);
@@ -253,7 +257,8 @@ class OccupancyGrid {
     float end_log_odds = 0.0F;      // an obstacle end adds this
     bool end_holds = false;         // an obstacle end holds its cell (near_hit_hold_range_m)
     double firm_m = kNoLimit;       // beyond this along the ray: miss_unless_occupied
-    double held_beyond_m = kNoLimit;  // beyond this along the ray: cells held by a near hit are passed by
+    double held_beyond_m = kNoLimit;  // beyond this along the ray: cells held by a near hit are passed by ...
+    double held_within_end_m = kNoLimit;  // ... where they lie within this of the ray's end
   };
 
   void add(int cell_x, int cell_y, float delta);
