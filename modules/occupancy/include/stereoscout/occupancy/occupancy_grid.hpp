@@ -158,13 +158,17 @@ struct ScanPoint {
   float x_robot_m = 0.0F;
   float y_robot_m = 0.0F;
   core::DepthScanColumn::Kind kind = core::DepthScanColumn::Kind::invalid;
-  bool obstacle_at_camera_height = false;
+  std::uint8_t marks = 0;  // kAtCameraHeight | kBlankWallBase
   std::uint16_t floor_visible_from_mm = 0;  // DepthScanColumn::floor_visible_from_m, whole mm
   std::uint16_t measurable_from_mm = 0;     // DepthScanColumn::measurable_from_m, whole mm
   std::uint16_t end_range_sigma_mm = 0;     // DepthScanColumn::end_range_sigma_m, whole mm
 
   // The one conversion both insert() overloads use, so they give identical cells.
   static ScanPoint from_column(const core::DepthScanColumn& column);
+  static constexpr std::uint8_t kAtCameraHeight = 1U;  // DepthScanColumn::obstacle_at_camera_height
+  static constexpr std::uint8_t kBlankWallBase = 2U;   // DepthScanColumn::blank_wall is base
+  bool obstacle_at_camera_height() const { return (marks & kAtCameraHeight) != 0U; }
+  bool blank_wall_base() const { return (marks & kBlankWallBase) != 0U; }
   double floor_visible_from_m() const { return 0.001 * floor_visible_from_mm; }
   double measurable_from_m() const { return 0.001 * measurable_from_mm; }
   double end_range_sigma_m() const { return 0.001 * end_range_sigma_mm; }
