@@ -27,12 +27,13 @@
 //     every wall and in every door seen from afar, which closed the doors. Off by default:
 //     measured on the office it kept smeared jamb cells and a person's trace too, and
 //     lowered coverage (docs/results.md);
-//   - with near_hit_hold_range_m, a low obstacle's hit (not at the camera's height: a blank
-//     wall seen by its base) from within that range of the camera holds its cell, unless
+//   - with near_hit_hold_range_m, a blank wall's base hit (a column the scan put at the base
+//     of a wall it could not match) from within that range of the camera holds its cell, unless
 //     misses from within that range once left the cell free: misses from farther than that
 //     pass it by, until a nearer miss lowers it to log-odds 0 or a hit at the camera's height
 //     replaces it. A far ray's error across its way is the heading's error times its range,
-//     and the rays that reach a corridor's blank walls are far ones at a slant. Far hits and
+//     and the rays that reach a corridor's blank walls are far ones at a slant. Far hits,
+//     stereo's own low hits (a box; a walker's trace before a door, held, shut a room) and
 //     people stay for far misses to clear, and so do obstacles on cells that near views saw
 //     free (a door's jamb drawn into it by a pose a little off: held, it shut a room that
 //     the robot then stood too far from to see clear). Far misses that leave a cell free do
