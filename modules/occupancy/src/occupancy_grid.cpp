@@ -372,8 +372,7 @@ ScanPoint ScanPoint::from_column(const core::DepthScanColumn& column) {
   return {column.x_robot_m,
           column.y_robot_m,
           column.kind,
-          static_cast<std::uint8_t>((column.obstacle_at_camera_height ? ScanPoint::kAtCameraHeight : 0U) |
-                                    (column.blank_wall == core::DepthScanColumn::BlankWall::base ? ScanPoint::kBlankWallBase : 0U)),
+          column.obstacle_at_camera_height,
           saturated_mm(column.floor_visible_from_m),
           saturated_mm(column.measurable_from_m),
           saturated_mm(column.end_range_sigma_m)};
@@ -404,10 +403,10 @@ void OccupancyGrid::insert_column(const Eigen::Vector2d& origin, const Eigen::Ve
   const double looked_over_end = std::min<double>(model_.looked_over_range_m, length);
   if (looked_over_end > 0.0) mark_cells(origin, at(looked_over_end), kLookedOver);
   RayRules rules;
-  rules.at_camera_height = point.obstacle_at_camera_height();
+  rules.at_camera_height = point.obstacle_at_camera_height;
   rules.end_log_odds = hit_log_odds(length);
   const double hold_range = model_.near_hit_hold_range_m;
-  rules.end_holds = hold_range > 0.0 && length <= hold_range && point.blank_wall_base();
+  rules.end_holds = hold_range > 0.0 && length <= hold_range;
   if (obstacle && length <= visible_from) {
     cast_ray(end.x(), end.y(), end.x(), end.y(), true, rules);  // its own cell only
     return;

@@ -32,13 +32,6 @@ core::DepthScan one_column(float x, float y, Kind kind) {
   return scan;
 }
 
-// An obstacle column at a blank wall's base (the scan found it by the brightness step there).
-core::DepthScan blank_wall_base(float x, float y) {
-  core::DepthScan scan = one_column(x, y, Kind::obstacle);
-  scan.columns[0].blank_wall = core::DepthScanColumn::BlankWall::base;
-  return scan;
-}
-
 TEST(OccupancyGrid, ObstacleRayMissesAlongTheWayAndHitsAtTheEnd) {
   OccupancyGrid grid(small_geometry(), LogOddsModel{});
   grid.insert(one_column(0.55F, 0.05F, Kind::obstacle), core::Pose2{0.05, 0.0, 0.0});
@@ -142,9 +135,8 @@ TEST(OccupancyGrid, AFreeColumnsUncertainEndDoesNotEraseAWallButClearsUnknownCel
 // With near_hit_hold_range_m at 0.6 m, from a camera at A (cell 10) and one 0.5 m behind it at
 // B (cell 5): a blank wall's base hit from A at 0.5 m (cell 15) holds its cell against five
 // views of floor beyond it from B, whose misses pass it 1.0 m from their camera, while a
-// phantom hit from B at 0.8 m (cell 13), a person hit at the camera's height (cell 12) and a
-// textured low box hit from A (cell 14: stereo measured it, no blank wall's base) are lowered
-// by them, as are free and unknown cells. Misses from A, within 0.6 m, lower the wall;
+// phantom hit from B at 0.8 m (cell 13) and a person hit at the camera's height (cell 12) are
+// lowered by them, as are free and unknown cells. Misses from A, within 0.6 m, lower the wall;
 // once they bring it to log-odds 0 or below, a far hit there no longer holds against far misses.
 TEST(OccupancyGrid, ANearHitHoldsItsCellAgainstFarMissesButNotNearOnes) {
   LogOddsModel model;
@@ -154,17 +146,14 @@ TEST(OccupancyGrid, ANearHitHoldsItsCellAgainstFarMissesButNotNearOnes) {
   const core::DepthScan far_floor = one_column(1.3F, 0.0F, Kind::free);  // from B: misses cells 5-17
   for (const bool holding : {true, false}) {
     OccupancyGrid grid(small_geometry(), holding ? model : LogOddsModel{});
-    grid.insert(blank_wall_base(0.5F, 0.0F), near_pose);               // the wall: cell 15
+    grid.insert(one_column(0.5F, 0.0F, Kind::obstacle), near_pose);  // the wall: cell 15
     grid.insert(one_column(0.8F, 0.0F, Kind::obstacle), far_pose);   // a phantom: cell 13
-    grid.insert(one_column(0.4F, 0.0F, Kind::obstacle), near_pose);  // a textured low box, near: cell 14
     core::DepthScan person = one_column(0.2F, 0.0F, Kind::obstacle);  // cell 12
     person.columns[0].obstacle_at_camera_height = true;
     grid.insert(person, near_pose);
     for (int view = 0; view < 5; ++view) grid.insert(far_floor, far_pose);
-    // The wall's, the phantom's and the box's rays passed cell 12 first; the box's, cell 13.
-    EXPECT_FLOAT_EQ(grid.log_odds(12, 10), 3 * -0.4F + 0.85F + 5 * -0.4F);  // the person: lowered
-    EXPECT_FLOAT_EQ(grid.log_odds(13, 10), 2 * -0.4F + 0.85F + 5 * -0.4F);  // the phantom: lowered
-    EXPECT_FLOAT_EQ(grid.log_odds(14, 10), -0.4F + 0.85F + 5 * -0.4F);      // the box: lowered
+    EXPECT_FLOAT_EQ(grid.log_odds(12, 10), 2 * -0.4F + 0.85F + 5 * -0.4F);  // the person: lowered
+    EXPECT_FLOAT_EQ(grid.log_odds(13, 10), -0.4F + 0.85F + 5 * -0.4F);      // the phantom: lowered
     EXPECT_FLOAT_EQ(grid.log_odds(17, 10), 5 * -0.4F);                      // unknown: cleared
     if (!holding) {
       EXPECT_FLOAT_EQ(grid.log_odds(15, 10), 0.85F + 5 * -0.4F);
@@ -192,7 +181,7 @@ TEST(OccupancyGrid, AFarMissThatRunsOnBeyondAHeldCellLowersIt) {
     model.near_hit_hold_range_m = 0.6F;
     model.near_hit_hold_end_m = end_m;
     OccupancyGrid grid(small_geometry(), model);
-    grid.insert(blank_wall_base(0.5F, 0.0F), near_pose);  // cell 15
+    grid.insert(one_column(0.5F, 0.0F, Kind::obstacle), near_pose);  // cell 15
     for (int view = 0; view < 3; ++view) grid.insert(one_column(1.3F, 0.0F, Kind::free), far_pose);
     EXPECT_FLOAT_EQ(grid.log_odds(15, 10), end_m > 0.2F ? 0.85F : 0.85F + 3 * -0.4F) << end_m;
   }
@@ -212,9 +201,8 @@ TEST(OccupancyGrid, ANearHitDoesNotHoldACellThatNearViewsSawFree) {
   floor.columns[0].floor_visible_from_m = 0.4F;  // from cell 14 on: cell 13 is never missed
   for (int view = 0; view < 4; ++view) grid.insert(floor, near_pose);
   EXPECT_FLOAT_EQ(grid.log_odds(14, 10), 4 * -0.4F);
-  core::DepthScan jamb_and_wall = blank_wall_base(0.4F, 0.0F);  // cell 14
-  jamb_and_wall.columns.push_back(jamb_and_wall.columns[0]);
-  jamb_and_wall.columns[1].x_robot_m = 0.3F;  // cell 13
+  core::DepthScan jamb_and_wall = one_column(0.4F, 0.0F, Kind::obstacle);  // cell 14
+  jamb_and_wall.columns.push_back({0.3F, 0.0F, Kind::obstacle});            // cell 13
   for (int view = 0; view < 3; ++view) grid.insert(jamb_and_wall, near_pose);
   grid.insert(one_column(1.3F, 0.0F, Kind::free), core::Pose2{-0.45, 0.05, 0.0});  // passes both
   EXPECT_FLOAT_EQ(grid.log_odds(14, 10), 4 * -0.4F + 3 * 0.85F - 0.4F);
@@ -223,7 +211,7 @@ TEST(OccupancyGrid, ANearHitDoesNotHoldACellThatNearViewsSawFree) {
   // hits there then hold it: far misses do not count as the cell seen free.
   const core::Pose2 far_row{-0.45, 0.15, 0.0};
   for (int view = 0; view < 4; ++view) grid.insert(one_column(1.3F, 0.0F, Kind::free), far_row);
-  const core::DepthScan wall = blank_wall_base(0.56F, 0.0F);  // cell (16, 11), 0.56 m
+  const core::DepthScan wall = one_column(0.56F, 0.0F, Kind::obstacle);  // cell (16, 11), 0.56 m
   for (int view = 0; view < 2; ++view) grid.insert(wall, core::Pose2{0.05, 0.15, 0.0});
   grid.insert(one_column(1.3F, 0.0F, Kind::free), far_row);
   EXPECT_FLOAT_EQ(grid.log_odds(16, 11), 4 * -0.4F + 2 * 0.85F);
@@ -613,7 +601,7 @@ TEST(ScanHistory, KeepsOnlyValidColumnsAndInsertsLikeTheFullScan) {
   ASSERT_EQ(view.count, 2u);
   EXPECT_EQ(view.points[1].kind, Kind::free);
   EXPECT_EQ(view.points[1].floor_visible_from_mm, 200);
-  EXPECT_TRUE(view.points[0].obstacle_at_camera_height());
+  EXPECT_TRUE(view.points[0].obstacle_at_camera_height);
   OccupancyGrid from_view(small_geometry(), LogOddsModel{});
   OccupancyGrid from_scan(small_geometry(), LogOddsModel{});
   const core::Pose2 pose{0.13, -0.21, 0.7};

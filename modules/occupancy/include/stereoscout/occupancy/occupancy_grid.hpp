@@ -27,13 +27,12 @@
 //     every wall and in every door seen from afar, which closed the doors. Off by default:
 //     measured on the office it kept smeared jamb cells and a person's trace too, and
 //     lowered coverage (docs/results.md);
-//   - with near_hit_hold_range_m, a blank wall's base hit (a column the scan put at the base
-//     of a wall it could not match) from within that range of the camera holds its cell, unless
+//   - with near_hit_hold_range_m, a low obstacle's hit (not at the camera's height: a blank
+//     wall seen by its base) from within that range of the camera holds its cell, unless
 //     misses from within that range once left the cell free: misses from farther than that
 //     pass it by, until a nearer miss lowers it to log-odds 0 or a hit at the camera's height
 //     replaces it. A far ray's error across its way is the heading's error times its range,
-//     and the rays that reach a corridor's blank walls are far ones at a slant. Far hits,
-//     stereo's own low hits (a box; a walker's trace before a door, held, shut a room) and
+//     and the rays that reach a corridor's blank walls are far ones at a slant. Far hits and
 //     people stay for far misses to clear, and so do obstacles on cells that near views saw
 //     free (a door's jamb drawn into it by a pose a little off: held, it shut a room that
 //     the robot then stood too far from to see clear). Far misses that leave a cell free do
@@ -159,17 +158,13 @@ struct ScanPoint {
   float x_robot_m = 0.0F;
   float y_robot_m = 0.0F;
   core::DepthScanColumn::Kind kind = core::DepthScanColumn::Kind::invalid;
-  std::uint8_t marks = 0;  // kAtCameraHeight | kBlankWallBase
+  bool obstacle_at_camera_height = false;
   std::uint16_t floor_visible_from_mm = 0;  // DepthScanColumn::floor_visible_from_m, whole mm
   std::uint16_t measurable_from_mm = 0;     // DepthScanColumn::measurable_from_m, whole mm
   std::uint16_t end_range_sigma_mm = 0;     // DepthScanColumn::end_range_sigma_m, whole mm
 
   // The one conversion both insert() overloads use, so they give identical cells.
   static ScanPoint from_column(const core::DepthScanColumn& column);
-  static constexpr std::uint8_t kAtCameraHeight = 1U;  // DepthScanColumn::obstacle_at_camera_height
-  static constexpr std::uint8_t kBlankWallBase = 2U;   // DepthScanColumn::blank_wall is base
-  bool obstacle_at_camera_height() const { return (marks & kAtCameraHeight) != 0U; }
-  bool blank_wall_base() const { return (marks & kBlankWallBase) != 0U; }
   double floor_visible_from_m() const { return 0.001 * floor_visible_from_mm; }
   double measurable_from_m() const { return 0.001 * measurable_from_mm; }
   double end_range_sigma_m() const { return 0.001 * end_range_sigma_mm; }
