@@ -92,7 +92,7 @@ ExploreGtResult run_explore_gt(const core::SystemConfig& config, const host_sim:
 
   core::ExploreConfig explore_config = config.explore;
   explore_config.time_limit_s = std::min(explore_config.time_limit_s, config.run.max_time_s);
-  explore::Explorer explorer(explore::ExploreParams::from_config(explore_config, config.robot, config.camera,
+  explore::Explorer explorer(explore::ExploreParams::from_config(explore_config, config.robot, config.camera, config.vision,
                                                                  geometry.width_cells, geometry.height_cells));
   const ReachableCoverage truth(config, world);
   result.reachable_cells = truth.reachable_cells();

@@ -304,6 +304,7 @@ void write_counters(report::JsonWriter& json, const stack::Stack& stack) {
       .unsigned_integer("trace_crossings", e.trace_crossings)
       .unsigned_integer("trail_follows", e.trail_follows)
       .unsigned_integer("traces_confirmed", e.traces_confirmed)
+      .unsigned_integer("back_offs_to_see", e.back_offs_to_see)
       .unsigned_integer("traces_seen_standing", e.traces_seen_standing)
       .unsigned_integer("plans_kept_for_walkers", e.plans_kept_for_walkers)
       .unsigned_integer("walker_holds", e.walker_holds)

@@ -16,6 +16,7 @@ const char* to_string(ExploreEventKind kind) {
     case ExploreEventKind::goal_failed: return "goal_failed";
     case ExploreEventKind::goal_blacklisted: return "goal_blacklisted";
     case ExploreEventKind::safety_stop: return "safety_stop";
+    case ExploreEventKind::backing_to_see: return "backing_to_see";
     case ExploreEventKind::scan_stop: return "scan_stop";
     case ExploreEventKind::stall: return "stall";
     case ExploreEventKind::look: return "look";

@@ -1,5 +1,6 @@
 #include "stereoscout/explore/grid_view.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -8,7 +9,8 @@
 namespace stereoscout::explore {
 
 ExploreParams ExploreParams::from_config(const core::ExploreConfig& explore, const core::RobotConfig& robot,
-                                         const core::CameraConfig& camera, int max_width, int max_height) {
+                                         const core::CameraConfig& camera, const core::VisionConfig& vision,
+                                         int max_width, int max_height) {
   ExploreParams params;
   params.explore = explore;
   params.robot_radius_m = robot.radius_m;
@@ -27,6 +29,8 @@ ExploreParams ExploreParams::from_config(const core::ExploreConfig& explore, con
   } else {
     params.camera_near_m = lowest_ray_rad >= kStraightDownRad ? 0.0 : camera.mount_height_m / std::tan(lowest_ray_rad);
   }
+  const int largest_disparity_px = std::max(1, vision.dense_num_disparities - 1);
+  params.camera_measurable_m = camera.focal_px * camera.baseline_m / largest_disparity_px;
   params.max_width = max_width;
   params.max_height = max_height;
   return params;

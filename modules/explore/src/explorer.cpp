@@ -639,7 +639,8 @@ void Explorer::finish_look(const ExploreInput& input) {
   fresh_look_ = true;
   // What the look saw still standing near the robot is no person's trace. While crossing
   // traces, the map changes with that, and with the traces that aged while the robot stood.
-  counters_.traces_confirmed += traces_.confirm_near(input.grid, position_of(input.pose), input.time_s);
+  counters_.traces_confirmed +=
+      traces_.confirm_near(input.grid, position_of(input.pose), params_.unmeasured_radius_m(), input.time_s);
   if (!return_after_look_ && !resume_after_look_) {
     if (crossing_traces_) rebuild_map(input);
     state_ = ExploreState::choose_goal;
@@ -717,7 +718,7 @@ void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
     note(ExploreEventKind::stall, input);
     contacts_.record(map_.grid(), input.pose, params_.robot_radius_m, input.time_s, trail_);
     if (params_.explore.stall_back_off_m > 0.0) {
-      begin_back_off(input, output);
+      begin_back_off(input, output, params_.explore.stall_back_off_m);
       return;
     }
     stop_and_look(input, output, 0.0);
@@ -745,6 +746,7 @@ void Explorer::drive_step(const ExploreInput& input, ExploreOutput& output) {
   if (blocked == Blocked::by_grid) {
     ++counters_.safety_stops;
     note(ExploreEventKind::safety_stop, input);
+    if (back_off_to_see(input, output)) return;
     stop_and_look(input, output, command.angular_rad_s);
     return;
   }
@@ -890,14 +892,31 @@ void Explorer::stop_and_look(const ExploreInput& input, ExploreOutput& output, d
 // off its middle, a jamb's cell behind refused every back-off, and a robot that does not move
 // makes no update that could change that (office seed 1 with the random walk: 1340 s at a
 // jamb, 827 back-offs refused).
-void Explorer::begin_back_off(const ExploreInput& input, ExploreOutput& output) {
+void Explorer::begin_back_off(const ExploreInput& input, ExploreOutput& output, double distance_m) {
   ++counters_.back_offs;
   backing_off_ = true;
+  back_off_m_ = distance_m;
   back_off_from_ = position_of(input.pose);
   back_off_start_s_ = input.time_s;
   back_off_turning_ = false;
   if (back_off_blocked(input, input.pose.theta, kAheadCheck_m)) choose_back_off_heading(input);
   back_off_step(input, output);
+}
+
+// A safety stop while crossing traces, on a trace nearer than the camera measures (a person
+// who walked past right in front of the robot, in a door): a look from here could neither
+// clear it nor tell it from an obstacle, and the plan would cross it again after the look. So
+// the robot first backs off until it lies a cell beyond that, by the grid behind (the
+// back-off ends with the look). Only when stall_back_off_m allows backing off at all.
+bool Explorer::back_off_to_see(const ExploreInput& input, ExploreOutput& output) {
+  if (!crossing_traces_ || params_.explore.stall_back_off_m <= 0.0) return false;
+  const double unmeasured_m = params_.unmeasured_radius_m();
+  const double nearest_m = traces_.nearest_trace_m(input.grid, position_of(input.pose), unmeasured_m, input.time_s);
+  if (nearest_m >= unmeasured_m) return false;
+  ++counters_.back_offs_to_see;
+  note(ExploreEventKind::backing_to_see, input);
+  begin_back_off(input, output, unmeasured_m - nearest_m + input.grid.resolution_m);
+  return true;
 }
 
 // True when the disc, backed straight off along heading_rad from where the robot stands,
@@ -927,7 +946,7 @@ bool Explorer::straight_move_blocked(const GridView& grid, const ExploreInput& i
 }
 
 double Explorer::least_back_off_reach_m() const {
-  return kAheadCheck_m + kBackOffLeastFraction * params_.explore.stall_back_off_m;
+  return kAheadCheck_m + kBackOffLeastFraction * back_off_m_;
 }
 
 // The nearest turn first, to the left before the right; none when every one is shut too.
@@ -964,7 +983,7 @@ bool Explorer::back_off_step(const ExploreInput& input, ExploreOutput& output) {
     back_off_from_ = robot;
     back_off_start_s_ = input.time_s;
   }
-  const double distance = params_.explore.stall_back_off_m;
+  const double distance = back_off_m_;
   const bool done = (robot - back_off_from_).norm() >= distance ||
                     input.time_s - back_off_start_s_ > 2.0 * distance / params_.max_speed_mps ||
                     back_off_blocked(input, input.pose.theta, kAheadCheck_m);

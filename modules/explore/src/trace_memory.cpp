@@ -14,6 +14,20 @@ constexpr float kNever = -std::numeric_limits<float>::infinity();
 // Cells compared a block at a time: between two updates nearly every block is unchanged.
 constexpr std::size_t kCompareBlock = 64;
 
+// Visits each cell of `grid` whose centre lies within radius_m of `centre`.
+template <typename Visit>
+void for_cells_within(const GridView& grid, const Eigen::Vector2d& centre, double radius_m, Visit&& visit) {
+  const int reach = static_cast<int>(std::ceil(radius_m / grid.resolution_m));
+  const Eigen::Vector2i middle = grid.cell_of(centre);
+  for (int y = middle.y() - reach; y <= middle.y() + reach; ++y) {
+    for (int x = middle.x() - reach; x <= middle.x() + reach; ++x) {
+      if (!grid.contains(x, y)) continue;
+      const double distance_m = (grid.center(x, y) - centre).norm();
+      if (distance_m <= radius_m) visit(grid.index(x, y), distance_m);
+    }
+  }
+}
+
 }  // namespace
 
 TraceMemory::TraceMemory(const core::ExploreConfig& config, int max_width, int max_height)
@@ -120,6 +134,10 @@ bool TraceMemory::trace(std::size_t i, double time_s) const {
          time_s - static_cast<double>(turned_occupied_s_[i]) >= forget_after_s_;
 }
 
+bool TraceMemory::occupied_trace(const GridView& grid, std::size_t i, double time_s) const {
+  return trace(i, time_s) && grid.cells[i] == static_cast<std::uint8_t>(CellState::occupied);
+}
+
 // An occupied neighbour that is no trace: the cell is part of a standing obstacle, such as a
 // blank wall whose cells grazing rays erased and the next view restored one by one.
 bool TraceMemory::touches_obstacle(const GridView& grid, int x, int y, double time_s) const {
@@ -139,7 +157,7 @@ GridView TraceMemory::forget_traces(const GridView& grid, double time_s) {
   const std::size_t count = static_cast<std::size_t>(grid.width) * static_cast<std::size_t>(grid.height);
   GridEdit forgotten(grid, forgotten_.data());
   for (std::size_t i = 0; i < count; ++i) {
-    if (!trace(i, time_s) || grid.cells[i] != static_cast<std::uint8_t>(CellState::occupied)) continue;
+    if (!occupied_trace(grid, i, time_s)) continue;
     const int x = static_cast<int>(i % static_cast<std::size_t>(grid.width));
     const int y = static_cast<int>(i / static_cast<std::size_t>(grid.width));
     if (touches_obstacle(grid, x, y, time_s)) continue;
@@ -149,22 +167,27 @@ GridView TraceMemory::forget_traces(const GridView& grid, double time_s) {
   return forgotten.result();
 }
 
-std::size_t TraceMemory::confirm_near(const GridView& grid, const Eigen::Vector2d& centre, double time_s) {
+std::size_t TraceMemory::confirm_near(const GridView& grid, const Eigen::Vector2d& centre, double seen_from_m,
+                                      double time_s) {
   if (forget_after_s_ <= 0.0 || !same_geometry(grid)) return 0;
-  const int reach = static_cast<int>(std::ceil(confirm_radius_m_ / grid.resolution_m));
-  const Eigen::Vector2i middle = grid.cell_of(centre);
   std::size_t confirmed = 0;
-  for (int y = middle.y() - reach; y <= middle.y() + reach; ++y) {
-    for (int x = middle.x() - reach; x <= middle.x() + reach; ++x) {
-      if (!grid.contains(x, y) || (grid.center(x, y) - centre).norm() > confirm_radius_m_) continue;
-      const std::size_t i = grid.index(x, y);
-      if (!trace(i, time_s) || grid.cells[i] != static_cast<std::uint8_t>(CellState::occupied)) continue;
-      turned_occupied_s_[i] = kNever;
-      ++confirmed;
-    }
-  }
+  for_cells_within(grid, centre, confirm_radius_m_, [&](std::size_t i, double distance_m) {
+    if (distance_m < seen_from_m || !occupied_trace(grid, i, time_s)) return;
+    turned_occupied_s_[i] = kNever;
+    ++confirmed;
+  });
   confirmed_ += confirmed;
   return confirmed;
+}
+
+double TraceMemory::nearest_trace_m(const GridView& grid, const Eigen::Vector2d& centre, double radius_m,
+                                    double time_s) const {
+  double nearest_m = std::numeric_limits<double>::infinity();
+  if (forget_after_s_ <= 0.0 || !same_geometry(grid)) return nearest_m;
+  for_cells_within(grid, centre, radius_m, [&](std::size_t i, double distance_m) {
+    if (occupied_trace(grid, i, time_s)) nearest_m = std::min(nearest_m, distance_m);
+  });
+  return nearest_m;
 }
 
 }  // namespace stereoscout::explore

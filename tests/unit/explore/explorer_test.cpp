@@ -1488,6 +1488,17 @@ double drive_until_stopped(Explorer& explorer, const GridView& grid, double x, d
   return x;
 }
 
+// Moves the robot back along y = 3.05 m in 5 cm steps while the explorer backs it off; returns
+// the x where the look began (time_s: that tick's time).
+double back_off_until_look(Explorer& explorer, const GridView& grid, double x, double& time_s) {
+  for (; x > 0.5; x -= 0.05) {
+    time_s += 0.5;
+    const ExploreOutput output = explorer.step(input_at(grid, x, 3.05, 0.0, time_s, false));
+    if (output.state != ExploreState::drive || output.drive.linear_mps >= 0.0) break;
+  }
+  return x;
+}
+
 // True when a plan cell lies beyond the trace (x = 3.25 m).
 bool plan_leads_past_the_door(const Explorer& explorer) {
   for (const Eigen::Vector2i& cell : explorer.plan().cells) {
@@ -1517,12 +1528,19 @@ TEST(Explorer, APersonsOldTraceInTheOnlyDoorIsCrossedByPlansNotByTheSafetyCheck)
   const double stopped_x = drive_until_stopped(explorer, grid, 1.5, time_s);
   EXPECT_LT(stopped_x, 3.2 - 0.33);
   EXPECT_GT(stopped_x, 2.0);
-  EXPECT_EQ(explorer.state(), ExploreState::look_around);
   EXPECT_EQ(explorer.counters().safety_stops, 1U);
+  // The nearest cell's centre (3.25 m) lies nearer the camera than it measures: the robot backs
+  // off until it lies a cell beyond that, and looks.
+  EXPECT_EQ(explorer.counters().back_offs_to_see, 1U);
+  EXPECT_EQ(explorer.state(), ExploreState::drive);
+  const double look_x = back_off_until_look(explorer, grid, stopped_x, time_s);
+  EXPECT_EQ(explorer.state(), ExploreState::look_around);
+  EXPECT_LE(look_x, 3.25 - door.params.unmeasured_radius_m() + 1e-9);
+  EXPECT_GT(look_x, 3.25 - door.params.unmeasured_radius_m() - 0.2);
   // The look sees the floor there: the person has gone. The robot goes on through the door.
   door.walk_past(CellState::free);
-  explorer.step(input_at(grid, stopped_x, 3.05, 0.0, time_s + 1.0, true));
-  const ExploreOutput through = finish_a_look(explorer, grid, stopped_x, 3.05, time_s + 2.0);
+  explorer.step(input_at(grid, look_x, 3.05, 0.0, time_s + 1.0, true));
+  const ExploreOutput through = finish_a_look(explorer, grid, look_x, 3.05, time_s + 2.0);
   EXPECT_EQ(through.state, ExploreState::drive);
   EXPECT_GT(through.drive.linear_mps, 0.0);
   EXPECT_TRUE(plan_leads_past_the_door(explorer));
@@ -1540,8 +1558,9 @@ TEST(Explorer, ATraceStillThereAfterALookNearItIsAnObstacleAgain) {
   ASSERT_EQ(finish_a_look(explorer, grid, 1.5, 3.05, 11.0).state, ExploreState::drive);
   double time_s = 11.0;
   const double stopped_x = drive_until_stopped(explorer, grid, 1.5, time_s);
+  const double look_x = back_off_until_look(explorer, grid, stopped_x, time_s);
   ASSERT_EQ(explorer.state(), ExploreState::look_around);
-  finish_a_look(explorer, grid, stopped_x, 3.05, time_s + 2.0);
+  finish_a_look(explorer, grid, look_x, 3.05, time_s + 2.0);
   EXPECT_EQ(explorer.counters().traces_confirmed, 9U);
   EXPECT_EQ(explorer.counters().goal_failures, 2U);
   EXPECT_FALSE(plan_leads_past_the_door(explorer));

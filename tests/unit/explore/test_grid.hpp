@@ -59,7 +59,7 @@ inline ExploreParams test_params(int width, int height, bool has_pan_unit = true
   // the tests of waiting for walkers switch it on themselves.
   core::ExploreConfig explore;
   explore.wait_for_walkers = false;
-  return ExploreParams::from_config(explore, robot, camera, width, height);
+  return ExploreParams::from_config(explore, robot, camera, core::VisionConfig{}, width, height);
 }
 
 }  // namespace stereoscout::explore::testing

@@ -2,6 +2,7 @@
 // fresh_obstacle_hold_s, and traces that planning crosses after trace_forget_after_s; a first
 // sighting (unknown to occupied) is neither.
 #include <algorithm>
+#include <cmath>
 
 #include <gtest/gtest.h>
 
@@ -61,6 +62,32 @@ TEST(TraceMemory, ObserveDoesNotAllocateAndIsOffWithNoMarginNoForgettingAndNoVie
   EXPECT_EQ(off.forget_traces(grid.view(), 100.0).cells, grid.view().cells);
 }
 
+// A look confirms no trace nearer than the camera measures (seen_from_m): a person who walked
+// past right in front of the robot left cells the look could not have cleared.
+TEST(TraceMemory, ALookConfirmsNoTraceNearerThanTheCameraMeasures) {
+  core::ExploreConfig config;
+  config.trace_forget_after_s = 10.0;
+  config.trace_confirm_radius_m = 2.0;
+  TraceMemory traces(config, 40, 20);
+  TestGrid grid(40, 20, CellState::free);
+  traces.observe(grid.view(), 0.0);
+  grid.set(15, 10, CellState::occupied);  // 0.5 m from (1.05, 1.05)
+  grid.set(20, 10, CellState::occupied);  // 1.0 m
+  traces.observe(grid.view(), 1.0);
+  const Eigen::Vector2d robot(1.05, 1.05);
+  EXPECT_NEAR(traces.nearest_trace_m(grid.view(), robot, 1.5, 11.0), 0.5, 1e-9);
+  EXPECT_TRUE(std::isinf(traces.nearest_trace_m(grid.view(), robot, 0.4, 11.0)));
+  EXPECT_TRUE(std::isinf(traces.nearest_trace_m(grid.view(), robot, 1.5, 10.9)));  // not yet traces
+  EXPECT_EQ(traces.confirm_near(grid.view(), robot, 0.7, 11.0), 1U);
+  const GridView forgotten = traces.forget_traces(grid.view(), 11.0);
+  EXPECT_EQ(forgotten.at(15, 10), CellState::free);
+  EXPECT_EQ(forgotten.at(20, 10), CellState::occupied);
+  EXPECT_NEAR(traces.nearest_trace_m(grid.view(), robot, 1.5, 11.0), 0.5, 1e-9);
+  // From farther back the same look confirms it.
+  EXPECT_EQ(traces.confirm_near(grid.view(), Eigen::Vector2d(0.65, 1.05), 0.7, 12.0), 1U);
+  EXPECT_TRUE(std::isinf(traces.nearest_trace_m(grid.view(), robot, 1.5, 12.0)));
+}
+
 TEST(TraceMemory, AnOldTraceAwayFromStandingObstaclesIsForgottenUntilALookConfirmsIt) {
   core::ExploreConfig config;
   config.trace_forget_after_s = 10.0;
@@ -87,7 +114,7 @@ TEST(TraceMemory, AnOldTraceAwayFromStandingObstaclesIsForgottenUntilALookConfir
   // A look from (0.55, 1.05): the trace within a metre is still there, so it is an obstacle;
   // the one 2 m away was out of reach of the look and stays a trace.
   const core::AllocationScope scope;
-  EXPECT_EQ(traces.confirm_near(grid.view(), Eigen::Vector2d(0.55, 1.05), 12.0), 1U);
+  EXPECT_EQ(traces.confirm_near(grid.view(), Eigen::Vector2d(0.55, 1.05), 0.0, 12.0), 1U);
   EXPECT_EQ(traces.confirmed(), 1U);
   const GridView after = traces.forget_traces(grid.view(), 12.0);
   EXPECT_EQ(scope.allocations(), 0U);

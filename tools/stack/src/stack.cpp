@@ -128,7 +128,7 @@ Stack::Stack(const core::SystemConfig& config, const StackOptions& options, cons
   core::ExploreConfig explore = config.explore;
   explore.time_limit_s = std::min(explore.time_limit_s, options.max_time_s);
   explorer_ = std::make_unique<explore::Explorer>(explore::ExploreParams::from_config(
-      explore, config.robot, config.camera, config.grid.width_cells, config.grid.height_cells));
+      explore, config.robot, config.camera, config.vision, config.grid.width_cells, config.grid.height_cells));
   cells_.assign(static_cast<std::size_t>(config.grid.width_cells) * static_cast<std::size_t>(config.grid.height_cells),
                 occupancy::CellState::unknown);
   in_view_.assign(cells_.size(), 0);

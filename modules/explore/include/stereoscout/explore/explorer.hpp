@@ -109,7 +109,8 @@ struct ExploreCounters {
   std::uint64_t looks = 0;
   std::uint64_t return_failures = 0;  // no way back or no progress on it; given up at goal_failures_before_blacklist
   std::uint64_t looks_before_giving_up = 0;  // no goal, or no way back: one more look first
-  std::uint64_t back_offs = 0;       // backed off after a stall
+  std::uint64_t back_offs = 0;       // backed off after a stall, or to see a trace (back_offs_to_see)
+  std::uint64_t back_offs_to_see = 0;  // ... a safety stop on a trace nearer than the camera measures
   std::uint64_t back_off_turns = 0;  // ... turning in place first, the way straight back shut
   std::uint64_t contact_clears = 0;  // contacts forgotten (but repeated ones) before concluding "explored" or "no way back"
   std::uint64_t trace_crossings = 0;   // plans let cross old traces rather than conclude "no plan" or "nothing left"
@@ -185,7 +186,8 @@ class Explorer {
   double gaze_pan_rad(const core::Pose2& pose) const;
   void stop_and_look(const ExploreInput& input, ExploreOutput& output, double turn_rad_s);
   void hold_for_scan(const ExploreInput& input);
-  void begin_back_off(const ExploreInput& input, ExploreOutput& output);
+  void begin_back_off(const ExploreInput& input, ExploreOutput& output, double distance_m);
+  bool back_off_to_see(const ExploreInput& input, ExploreOutput& output);
   bool back_off_blocked(const ExploreInput& input, double heading_rad, double reach_m) const;
   bool straight_move_blocked(const GridView& grid, const ExploreInput& input, const Eigen::Vector2d& direction,
                              double from_m, double to_m, bool scan_too) const;
@@ -256,8 +258,9 @@ class Explorer {
   double look_turned_rad_ = 0.0;
   double look_last_heading_ = 0.0;
   double pan_target_rad_ = 0.0;
-  // Backing off after a stall.
+  // Backing off after a stall (or to see a trace).
   bool backing_off_ = false;
+  double back_off_m_ = 0.0;
   Eigen::Vector2d back_off_from_ = Eigen::Vector2d::Zero();
   double back_off_start_s_ = 0.0;
   bool back_off_turning_ = false;      // turning in place first (stall_back_off_turn_deg)

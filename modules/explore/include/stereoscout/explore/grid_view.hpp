@@ -13,6 +13,7 @@
 #include "stereoscout/core/config/camera.hpp"
 #include "stereoscout/core/config/explore.hpp"
 #include "stereoscout/core/config/robot.hpp"
+#include "stereoscout/core/config/vision.hpp"
 
 namespace stereoscout::explore {
 
@@ -137,13 +138,17 @@ struct ExploreParams {
   double camera_forward_m = 0.1;
   double camera_half_fov_rad = 0.675;
   double camera_near_m = 1.0;
+  // Nearer the camera than this the dense matcher measures nothing (focal * baseline over its
+  // largest disparity): a look clears no cell there, not even a gone person's.
+  double camera_measurable_m = 0.63;
   // The left camera's distance to the left of the right one, whose columns the scan has.
   double camera_baseline_m = 0.1;
   int max_width = 700;   // grid size the buffers are allocated for
   int max_height = 700;
 
   static ExploreParams from_config(const core::ExploreConfig& explore, const core::RobotConfig& robot,
-                                   const core::CameraConfig& camera, int max_width, int max_height);
+                                   const core::CameraConfig& camera, const core::VisionConfig& vision, int max_width,
+                                   int max_height);
   // A cell centre closer than this to an occupied cell centre is a collision: the robot radius
   // plus lethal_margin_cells of a cell for the discretisation of the obstacle's true surface.
   double lethal_distance_m(double resolution_m) const {
@@ -151,6 +156,8 @@ struct ExploreParams {
   }
   // Goals keep this clearance; paths pay a high cost below it.
   double safe_distance_m(double resolution_m) const { return lethal_distance_m(resolution_m) + explore.safety_margin_m; }
+  // A cell nearer the robot's centre than this may lie nearer the camera than it measures.
+  double unmeasured_radius_m() const { return camera_forward_m + camera_measurable_m; }
   double ray_cap_m() const {
     return explore.preferred_distance_m + explore.ray_cap_sigmas * explore.distance_sigma_m;
   }
