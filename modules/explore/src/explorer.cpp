@@ -640,7 +640,7 @@ void Explorer::finish_look(const ExploreInput& input) {
   // What the look saw still standing near the robot is no person's trace. While crossing
   // traces, the map changes with that, and with the traces that aged while the robot stood.
   counters_.traces_confirmed +=
-      traces_.confirm_near(input.grid, position_of(input.pose), params_.unmeasured_radius_m(), input.time_s);
+      traces_.confirm_near(input.grid, position_of(input.pose), params_.unseen_floor_radius_m(), input.time_s);
   if (!return_after_look_ && !resume_after_look_) {
     if (crossing_traces_) rebuild_map(input);
     state_ = ExploreState::choose_goal;
@@ -903,19 +903,20 @@ void Explorer::begin_back_off(const ExploreInput& input, ExploreOutput& output, 
   back_off_step(input, output);
 }
 
-// A safety stop while crossing traces, on a trace nearer than the camera measures (a person
+// A safety stop while crossing traces, on a trace where the camera sees no floor (a person
 // who walked past right in front of the robot, in a door): a look from here could neither
 // clear it nor tell it from an obstacle, and the plan would cross it again after the look. So
 // the robot first backs off until it lies a cell beyond that, by the grid behind (the
 // back-off ends with the look). Only when stall_back_off_m allows backing off at all.
 bool Explorer::back_off_to_see(const ExploreInput& input, ExploreOutput& output) {
   if (!crossing_traces_ || params_.explore.stall_back_off_m <= 0.0) return false;
-  const double unmeasured_m = params_.unmeasured_radius_m();
-  const double nearest_m = traces_.nearest_trace_m(input.grid, position_of(input.pose), unmeasured_m, input.time_s);
-  if (nearest_m >= unmeasured_m) return false;
+  const double unseen_m = params_.unseen_floor_radius_m();
+  if (!std::isfinite(unseen_m)) return false;  // a camera that never sees the floor
+  const double nearest_m = traces_.nearest_trace_m(input.grid, position_of(input.pose), unseen_m, input.time_s);
+  if (nearest_m >= unseen_m) return false;
   ++counters_.back_offs_to_see;
   note(ExploreEventKind::backing_to_see, input);
-  begin_back_off(input, output, unmeasured_m - nearest_m + input.grid.resolution_m);
+  begin_back_off(input, output, unseen_m - nearest_m + input.grid.resolution_m);
   return true;
 }
 

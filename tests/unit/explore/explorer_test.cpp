@@ -1462,7 +1462,7 @@ struct TraceInTheDoor {
   TraceInTheDoor() {
     params.explore.return_to_start = false;
     params.explore.trace_forget_after_s = 10.0;
-    params.explore.trace_confirm_radius_m = 1.0;
+    params.explore.trace_confirm_radius_m = 1.5;
     params.robot_radius_m = 0.33;
   }
   void walk_past(CellState state) { scene.grid.fill(32, 26, 33, 35, state); }
@@ -1529,14 +1529,14 @@ TEST(Explorer, APersonsOldTraceInTheOnlyDoorIsCrossedByPlansNotByTheSafetyCheck)
   EXPECT_LT(stopped_x, 3.2 - 0.33);
   EXPECT_GT(stopped_x, 2.0);
   EXPECT_EQ(explorer.counters().safety_stops, 1U);
-  // The nearest cell's centre (3.25 m) lies nearer the camera than it measures: the robot backs
+  // The nearest cell's centre (3.25 m) lies where the camera sees no floor: the robot backs
   // off until it lies a cell beyond that, and looks.
   EXPECT_EQ(explorer.counters().back_offs_to_see, 1U);
   EXPECT_EQ(explorer.state(), ExploreState::drive);
   const double look_x = back_off_until_look(explorer, grid, stopped_x, time_s);
   EXPECT_EQ(explorer.state(), ExploreState::look_around);
-  EXPECT_LE(look_x, 3.25 - door.params.unmeasured_radius_m() + 1e-9);
-  EXPECT_GT(look_x, 3.25 - door.params.unmeasured_radius_m() - 0.2);
+  EXPECT_LE(look_x, 3.25 - door.params.unseen_floor_radius_m() + 1e-9);
+  EXPECT_GT(look_x, 3.25 - door.params.unseen_floor_radius_m() - 0.2);
   // The look sees the floor there: the person has gone. The robot goes on through the door.
   door.walk_past(CellState::free);
   explorer.step(input_at(grid, look_x, 3.05, 0.0, time_s + 1.0, true));

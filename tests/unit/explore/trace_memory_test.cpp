@@ -62,9 +62,9 @@ TEST(TraceMemory, ObserveDoesNotAllocateAndIsOffWithNoMarginNoForgettingAndNoVie
   EXPECT_EQ(off.forget_traces(grid.view(), 100.0).cells, grid.view().cells);
 }
 
-// A look confirms no trace nearer than the camera measures (seen_from_m): a person who walked
-// past right in front of the robot left cells the look could not have cleared.
-TEST(TraceMemory, ALookConfirmsNoTraceNearerThanTheCameraMeasures) {
+// A look confirms no trace nearer than seen_from_m, where the camera sees no floor: a person
+// who walked past right in front of the robot left cells the look could not have cleared.
+TEST(TraceMemory, ALookConfirmsNoTraceWhereTheCameraSeesNoFloor) {
   core::ExploreConfig config;
   config.trace_forget_after_s = 10.0;
   config.trace_confirm_radius_m = 2.0;

@@ -34,7 +34,7 @@ enum class ExploreEventKind : std::uint8_t {
   goal_failed,       // the goal is given up (after no_plan, stuck, goal_timeout, no_net_progress or blocked_too_often)
   goal_blacklisted,  // ... for blacklist_hold_s (0: for good): it failed goal_failures_before_blacklist times
   safety_stop,       // the next stretch would touch an occupied cell
-  backing_to_see,    // ... a person's old trace, nearer than the camera measures: backing off before the look
+  backing_to_see,    // ... a person's old trace, where the camera sees no floor: backing off before the look
   scan_stop,         // ... the grid clear, but the latest scan saw an obstacle there (scan_guard_min_points)
   stall,             // forward motion commanded, none made: a contact
   look,              // a 360-degree look begins

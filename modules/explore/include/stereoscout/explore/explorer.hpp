@@ -110,7 +110,7 @@ struct ExploreCounters {
   std::uint64_t return_failures = 0;  // no way back or no progress on it; given up at goal_failures_before_blacklist
   std::uint64_t looks_before_giving_up = 0;  // no goal, or no way back: one more look first
   std::uint64_t back_offs = 0;       // backed off after a stall, or to see a trace (back_offs_to_see)
-  std::uint64_t back_offs_to_see = 0;  // ... a safety stop on a trace nearer than the camera measures
+  std::uint64_t back_offs_to_see = 0;  // ... a safety stop on a trace where the camera sees no floor
   std::uint64_t back_off_turns = 0;  // ... turning in place first, the way straight back shut
   std::uint64_t contact_clears = 0;  // contacts forgotten (but repeated ones) before concluding "explored" or "no way back"
   std::uint64_t trace_crossings = 0;   // plans let cross old traces rather than conclude "no plan" or "nothing left"

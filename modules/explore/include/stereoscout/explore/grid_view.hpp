@@ -3,6 +3,7 @@
 // states. The stack converts the ML grid with the ROS map_server thresholds; nothing here
 // depends on the occupancy module's internals. Also the derived settings of the module.
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -156,8 +157,9 @@ struct ExploreParams {
   }
   // Goals keep this clearance; paths pay a high cost below it.
   double safe_distance_m(double resolution_m) const { return lethal_distance_m(resolution_m) + explore.safety_margin_m; }
-  // A cell nearer the robot's centre than this may lie nearer the camera than it measures.
-  double unmeasured_radius_m() const { return camera_forward_m + camera_measurable_m; }
+  // A cell nearer the robot's centre than this may lie where the camera sees no floor or
+  // measures nothing: no view from here clears it, so a look says nothing about it.
+  double unseen_floor_radius_m() const { return camera_forward_m + std::max(camera_near_m, camera_measurable_m); }
   double ray_cap_m() const {
     return explore.preferred_distance_m + explore.ray_cap_sigmas * explore.distance_sigma_m;
   }

@@ -18,8 +18,8 @@
 // "nothing left", it plans on the grid with the traces free (forget_traces()). The safety
 // check does not: it still stops the robot before the cell, and the look that follows
 // re-observes it. Traces within trace_confirm_radius_m that are still occupied after a look
-// are obstacles from then on (confirm_near()), but for those nearer than the camera measures:
-// a look cannot clear them, and the explorer backs off before it looks at them. Not every trace is a person: the grid also
+// are obstacles from then on (confirm_near()), but for those where the camera sees no floor
+// (near the robot): a look cannot clear them, and the explorer backs off before it looks. Not every trace is a person: the grid also
 // first holds free, then occupied, the cells of a blank wall that grazing rays erased;
 // crossing traces always, not only when stuck, led plans through the office's corridor walls
 // (docs/results.md). So a trace next to an occupied cell that is no trace is part of that
@@ -77,8 +77,8 @@ class TraceMemory {
   GridView forget_traces(const GridView& grid, double time_s);
   // Trace cells from seen_from_m out to trace_confirm_radius_m of `centre` that `grid` still
   // holds occupied become obstacles; returns how many. Nearer ones stay traces: the camera
-  // measures nothing there, so a look could not have cleared them (a person who passed right
-  // in front of the robot).
+  // sees no floor there, so a look could not have cleared them (a person who passed right in
+  // front of the robot).
   std::size_t confirm_near(const GridView& grid, const Eigen::Vector2d& centre, double seen_from_m, double time_s);
   // The distance from `centre` to the nearest trace cell that `grid` still holds occupied,
   // if one lies within radius_m; infinity otherwise.
