@@ -313,7 +313,7 @@ bool Explorer::start_last_resort(bool& active, Changed&& changed, ExploreEventKi
   return true;
 }
 
-// Crossing traces and following the trail end with the goal they were for.
+// Crossing traces, following the trail and squeezing end with the goal they were for.
 void Explorer::stop_last_resorts(const ExploreInput& input) {
   if (!crossing_traces_ && !following_trail_ && !squeezing_) return;
   crossing_traces_ = false;
@@ -922,8 +922,8 @@ void Explorer::begin_back_off(const ExploreInput& input, ExploreOutput& output, 
   back_off_step(input, output);
 }
 
-// A safety stop while crossing traces, on a trace where the camera sees no floor (a person
-// who walked past right in front of the robot, in a door): a look from here could neither
+// A safety stop while crossing traces, with a trace ahead where the camera sees no floor (a
+// person who walked past right in front of the robot, in a door): a look from here could neither
 // clear it nor tell it from an obstacle, and the plan would cross it again after the look. So
 // the robot first backs off until it lies a cell beyond that, by the grid behind (the
 // back-off ends with the look). Only when stall_back_off_m allows backing off at all.
@@ -931,7 +931,8 @@ bool Explorer::back_off_to_see(const ExploreInput& input, ExploreOutput& output)
   if (!crossing_traces_ || params_.explore.stall_back_off_m <= 0.0) return false;
   const double unseen_m = params_.unseen_floor_radius_m();
   if (!std::isfinite(unseen_m)) return false;  // a camera that never sees the floor
-  const double nearest_m = traces_.nearest_trace_m(input.grid, position_of(input.pose), unseen_m, input.time_s);
+  const double nearest_m = traces_.nearest_trace_ahead_m(input.grid, position_of(input.pose),
+                                                         unit_towards(input.pose.theta), unseen_m, input.time_s);
   if (nearest_m >= unseen_m) return false;
   ++counters_.back_offs_to_see;
   note(ExploreEventKind::backing_to_see, input);

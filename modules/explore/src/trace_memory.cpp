@@ -180,12 +180,15 @@ std::size_t TraceMemory::confirm_near(const GridView& grid, const Eigen::Vector2
   return confirmed;
 }
 
-double TraceMemory::nearest_trace_m(const GridView& grid, const Eigen::Vector2d& centre, double radius_m,
-                                    double time_s) const {
+double TraceMemory::nearest_trace_ahead_m(const GridView& grid, const Eigen::Vector2d& centre,
+                                          const Eigen::Vector2d& heading, double radius_m, double time_s) const {
   double nearest_m = std::numeric_limits<double>::infinity();
   if (forget_after_s_ <= 0.0 || !same_geometry(grid)) return nearest_m;
   for_cells_within(grid, centre, radius_m, [&](std::size_t i, double distance_m) {
-    if (occupied_trace(grid, i, time_s)) nearest_m = std::min(nearest_m, distance_m);
+    if (distance_m >= nearest_m || !occupied_trace(grid, i, time_s)) return;
+    const int x = static_cast<int>(i % static_cast<std::size_t>(grid.width));
+    const int y = static_cast<int>(i / static_cast<std::size_t>(grid.width));
+    if ((grid.center(x, y) - centre).dot(heading) > 0.0) nearest_m = distance_m;
   });
   return nearest_m;
 }

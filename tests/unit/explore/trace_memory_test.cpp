@@ -75,17 +75,19 @@ TEST(TraceMemory, ALookConfirmsNoTraceWhereTheCameraSeesNoFloor) {
   grid.set(20, 10, CellState::occupied);  // 1.0 m
   traces.observe(grid.view(), 1.0);
   const Eigen::Vector2d robot(1.05, 1.05);
-  EXPECT_NEAR(traces.nearest_trace_m(grid.view(), robot, 1.5, 11.0), 0.5, 1e-9);
-  EXPECT_TRUE(std::isinf(traces.nearest_trace_m(grid.view(), robot, 0.4, 11.0)));
-  EXPECT_TRUE(std::isinf(traces.nearest_trace_m(grid.view(), robot, 1.5, 10.9)));  // not yet traces
+  const Eigen::Vector2d east(1.0, 0.0);
+  EXPECT_NEAR(traces.nearest_trace_ahead_m(grid.view(), robot, east, 1.5, 11.0), 0.5, 1e-9);
+  EXPECT_TRUE(std::isinf(traces.nearest_trace_ahead_m(grid.view(), robot, east, 0.4, 11.0)));
+  EXPECT_TRUE(std::isinf(traces.nearest_trace_ahead_m(grid.view(), robot, east, 1.5, 10.9)));  // not yet traces
+  EXPECT_TRUE(std::isinf(traces.nearest_trace_ahead_m(grid.view(), robot, -east, 1.5, 11.0)));  // behind
   EXPECT_EQ(traces.confirm_near(grid.view(), robot, 0.7, 11.0), 1U);
   const GridView forgotten = traces.forget_traces(grid.view(), 11.0);
   EXPECT_EQ(forgotten.at(15, 10), CellState::free);
   EXPECT_EQ(forgotten.at(20, 10), CellState::occupied);
-  EXPECT_NEAR(traces.nearest_trace_m(grid.view(), robot, 1.5, 11.0), 0.5, 1e-9);
+  EXPECT_NEAR(traces.nearest_trace_ahead_m(grid.view(), robot, east, 1.5, 11.0), 0.5, 1e-9);
   // From farther back the same look confirms it.
   EXPECT_EQ(traces.confirm_near(grid.view(), Eigen::Vector2d(0.65, 1.05), 0.7, 12.0), 1U);
-  EXPECT_TRUE(std::isinf(traces.nearest_trace_m(grid.view(), robot, 1.5, 12.0)));
+  EXPECT_TRUE(std::isinf(traces.nearest_trace_ahead_m(grid.view(), robot, east, 1.5, 12.0)));
 }
 
 TEST(TraceMemory, AnOldTraceAwayFromStandingObstaclesIsForgottenUntilALookConfirmsIt) {

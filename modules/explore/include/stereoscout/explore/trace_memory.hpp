@@ -12,22 +12,22 @@
 //
 // Traces (the person has walked on). The grid clears a person's cells only when a later ray
 // passes through them, and from inside a room the robot does not see the corridor beyond its
-// door: a person who walked past the door while the robot looked out left cells that shut it
-// in (the office). So a cell that turned occupied at least explore.trace_forget_after_s ago
-// (0: never) is a trace, and where the explorer would otherwise conclude "no plan" or
-// "nothing left", it plans on the grid with the traces free (forget_traces()). The safety
-// check does not: it still stops the robot before the cell, and the look that follows
-// re-observes it. Traces within trace_confirm_radius_m that are still occupied after a look
-// are obstacles from then on (confirm_near()), but for those where the camera sees no floor
-// (near the robot): a look cannot clear them, and the explorer backs off before it looks. Not every trace is a person: the grid also
-// first holds free, then occupied, the cells of a blank wall that grazing rays erased;
-// crossing traces always, not only when stuck, led plans through the office's corridor walls
-// (docs/results.md). So a trace next to an occupied cell that is no trace is part of that
-// obstacle, not forgotten. And a cell that stayed occupied through trace_view_updates
-// observation updates in the camera's view is a standing obstacle, never a trace: when a
-// person has gone, the rays through their cell clear it within a few updates; a blank wall's
-// restored cell stays (without this, plans that crossed traces ran back through the office
-// wall the robot had just seen, and in clutter between two blocked routes).
+// door: a person who walked past the door while the robot looked out left cells that shut it in
+// (the office). So a cell that turned occupied at least explore.trace_forget_after_s ago (0:
+// never) is a trace, and where the explorer would otherwise conclude "no plan" or "nothing
+// left", it plans on the grid with the traces free (forget_traces()). The safety check does
+// not: it still stops the robot before the cell, and the look that follows re-observes it.
+// Traces within trace_confirm_radius_m that are still occupied after a look are obstacles from
+// then on (confirm_near()), but for those where the camera sees no floor (near the robot): a
+// look cannot clear them, and the explorer backs off before it looks (nearest_trace_ahead_m()).
+// Not every trace is a person: the grid also first holds free, then occupied, the cells of a
+// blank wall that grazing rays erased; crossing traces always, not only when stuck, led plans
+// through the office's corridor walls (docs/results.md). So a trace next to an occupied cell
+// that is no trace is part of that obstacle, not forgotten. And a cell that stayed occupied
+// through trace_view_updates observation updates in the camera's view is a standing obstacle,
+// never a trace: when a person has gone, the rays through their cell clear it within a few
+// updates; a blank wall's restored cell stays (without this, plans that crossed traces ran back
+// through the office wall the robot had just seen, and in clutter between two blocked routes).
 //
 // observe() compares the grid with the one it saw last; it runs after every observation
 // update. All buffers are sized for the largest grid at construction; nothing is allocated
@@ -80,9 +80,11 @@ class TraceMemory {
   // sees no floor there, so a look could not have cleared them (a person who passed right in
   // front of the robot).
   std::size_t confirm_near(const GridView& grid, const Eigen::Vector2d& centre, double seen_from_m, double time_s);
-  // The distance from `centre` to the nearest trace cell that `grid` still holds occupied,
-  // if one lies within radius_m; infinity otherwise.
-  double nearest_trace_m(const GridView& grid, const Eigen::Vector2d& centre, double radius_m, double time_s) const;
+  // The distance from `centre` to the nearest trace cell that `grid` still holds occupied and
+  // that lies ahead (along the unit vector `heading`), if one lies within radius_m; infinity
+  // otherwise.
+  double nearest_trace_ahead_m(const GridView& grid, const Eigen::Vector2d& centre, const Eigen::Vector2d& heading,
+                               double radius_m, double time_s) const;
 
   std::size_t forgotten_last() const { return forgotten_last_; }  // cells freed by the last forget_traces()
   std::uint64_t confirmed() const { return confirmed_; }  // by looks
