@@ -656,10 +656,11 @@ void Explorer::look_step(const ExploreInput& input, ExploreOutput& output) {
 
 void Explorer::finish_look(const ExploreInput& input) {
   fresh_look_ = true;
-  // What the look saw still standing near the robot is no person's trace. While crossing
-  // traces, the map changes with that, and with the traces that aged while the robot stood.
-  counters_.traces_confirmed +=
-      traces_.confirm_near(input.grid, position_of(input.pose), params_.unseen_floor_radius_m(), input.time_s);
+  // What the look saw still standing near the robot is no person's trace (with
+  // trace_confirm_seen_floor, only where it sees the floor). While crossing traces, the map
+  // changes with that, and with the traces that aged while the robot stood.
+  const double seen_from_m = params_.explore.trace_confirm_seen_floor ? params_.unseen_floor_radius_m() : 0.0;
+  counters_.traces_confirmed += traces_.confirm_near(input.grid, position_of(input.pose), seen_from_m, input.time_s);
   if (!return_after_look_ && !resume_after_look_) {
     if (crossing_traces_) rebuild_map(input);
     state_ = ExploreState::choose_goal;
@@ -926,9 +927,12 @@ void Explorer::begin_back_off(const ExploreInput& input, ExploreOutput& output, 
 // person who walked past right in front of the robot, in a door): a look from here could neither
 // clear it nor tell it from an obstacle, and the plan would cross it again after the look. So
 // the robot first backs off until it lies a cell beyond that, by the grid behind (the
-// back-off ends with the look). Only when stall_back_off_m allows backing off at all.
+// back-off ends with the look). With explore.trace_confirm_seen_floor, and only when
+// stall_back_off_m allows backing off at all.
 bool Explorer::back_off_to_see(const ExploreInput& input, ExploreOutput& output) {
-  if (!crossing_traces_ || params_.explore.stall_back_off_m <= 0.0) return false;
+  if (!crossing_traces_ || !params_.explore.trace_confirm_seen_floor || params_.explore.stall_back_off_m <= 0.0) {
+    return false;
+  }
   const double unseen_m = params_.unseen_floor_radius_m();
   if (!std::isfinite(unseen_m)) return false;  // a camera that never sees the floor
   const double nearest_m = traces_.nearest_trace_ahead_m(input.grid, position_of(input.pose),

@@ -1479,6 +1479,7 @@ struct TraceInTheDoor {
     params.explore.return_to_start = false;
     params.explore.trace_forget_after_s = 10.0;
     params.explore.trace_confirm_radius_m = 1.5;
+    params.explore.trace_confirm_seen_floor = true;
     params.robot_radius_m = 0.33;
   }
   void walk_past(CellState state) { scene.grid.fill(32, 26, 33, 35, state); }
@@ -1579,6 +1580,24 @@ TEST(Explorer, ATraceStillThereAfterALookNearItIsAnObstacleAgain) {
   finish_a_look(explorer, grid, look_x, 3.05, time_s + 2.0);
   EXPECT_EQ(explorer.counters().traces_confirmed, 9U);
   EXPECT_EQ(explorer.counters().goal_failures, 2U);
+  EXPECT_FALSE(plan_leads_past_the_door(explorer));
+}
+
+// Without trace_confirm_seen_floor the look comes at the stop itself, and it confirms the
+// cells in the camera's blind zone too: they close the door.
+TEST(Explorer, WithoutSeenFloorOnlyTheLookAtTheStopConfirmsTheTraceInTheBlindZone) {
+  TraceInTheDoor door;
+  door.params.explore.trace_confirm_seen_floor = false;
+  Explorer explorer(door.params);
+  const GridView grid = door.scene.grid.view();
+  door.person_walks_past(explorer);
+  ASSERT_EQ(finish_a_look(explorer, grid, 1.5, 3.05, 11.0).state, ExploreState::drive);
+  double time_s = 11.0;
+  const double stopped_x = drive_until_stopped(explorer, grid, 1.5, time_s);
+  EXPECT_EQ(explorer.state(), ExploreState::look_around);
+  EXPECT_EQ(explorer.counters().back_offs_to_see, 0U);
+  finish_a_look(explorer, grid, stopped_x, 3.05, time_s + 2.0);
+  EXPECT_EQ(explorer.counters().traces_confirmed, 9U);
   EXPECT_FALSE(plan_leads_past_the_door(explorer));
 }
 
