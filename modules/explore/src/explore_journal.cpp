@@ -23,7 +23,6 @@ const char* to_string(ExploreEventKind kind) {
     case ExploreEventKind::contacts_cleared: return "contacts_cleared";
     case ExploreEventKind::crossing_traces: return "crossing_traces";
     case ExploreEventKind::following_trail: return "following_trail";
-    case ExploreEventKind::squeezing: return "squeezing";
     case ExploreEventKind::plan_kept: return "plan_kept";
     case ExploreEventKind::walker_hold: return "walker_hold";
     case ExploreEventKind::plan_switched: return "plan_switched";

@@ -245,7 +245,6 @@ void Explorer::rebuild_map(const ExploreInput& input) {
   if (params_.explore.remembered_obstacle_cost > 0.0) navigation_grid.seen_standing = traces_.standing_cells();
   map_.rebuild(navigation_grid, position_of(input.pose), extra);
   trail_cells_opened_ = following_trail_ ? map_.open_trail(trail_) : 0;
-  squeeze_cells_opened_ = squeezing_ ? map_.open_narrow() : 0;
   ++counters_.map_rebuilds;
 }
 
@@ -286,17 +285,6 @@ bool Explorer::start_following_trail(const ExploreInput& input) {
                            ExploreEventKind::following_trail, counters_.trail_follows, input);
 }
 
-// The last of them (explore.squeeze_last_resort): a door the grid narrowed below the lethal
-// width (a jamb drawn into it by a pose a little off, a wall's copy held beside it) shuts the
-// robot in or out for good, while the disc still fits through, which is all the safety check
-// asks. So before concluding, plans may pass every gap where the disc fits (at the highest
-// obstacle cost), until the goal (or the way back) is reached or fails.
-bool Explorer::start_squeezing(const ExploreInput& input) {
-  if (squeezing_ || !params_.explore.squeeze_last_resort) return false;
-  return start_last_resort(squeezing_, [this] { return squeeze_cells_opened_ > 0; }, ExploreEventKind::squeezing,
-                           counters_.squeezes, input);
-}
-
 // Switches one last resort on (a flag rebuild_map() reads) and keeps it only when the map it
 // rebuilt differs: counted and journaled then.
 template <typename Changed>
@@ -313,12 +301,11 @@ bool Explorer::start_last_resort(bool& active, Changed&& changed, ExploreEventKi
   return true;
 }
 
-// Crossing traces, following the trail and squeezing end with the goal they were for.
+// Crossing traces and following the trail end with the goal they were for.
 void Explorer::stop_last_resorts(const ExploreInput& input) {
-  if (!crossing_traces_ && !following_trail_ && !squeezing_) return;
+  if (!crossing_traces_ && !following_trail_) return;
   crossing_traces_ = false;
   following_trail_ = false;
-  squeezing_ = false;
   rebuild_map(input);
 }
 
@@ -366,10 +353,7 @@ void Explorer::check_plan(const ExploreInput& input) {
 // taken only when it is clearly cheaper, so that two near-equal ways do not alternate.
 bool Explorer::switch_to_cheaper_plan(const ExploreInput& input) {
   const double saving = params_.explore.plan_switch_saving_m;
-  if (saving <= 0.0 || plan_.cells.size() < 2 || crossing_traces_ || following_trail_ || squeezing_ ||
-      !narrow_ahead()) {
-    return false;
-  }
+  if (saving <= 0.0 || plan_.cells.size() < 2 || crossing_traces_ || following_trail_ || !narrow_ahead()) return false;
   const double kept = PathPlanner::remaining_cost(map_, plan_, follower_.progress());
   if (planner_.plan(map_, cell_of(input.pose), plan_.cells.back(), fresh_plan_) != PlanResult::found ||
       fresh_plan_.cost > kept - saving) {
@@ -475,8 +459,7 @@ bool Explorer::replan(const ExploreInput& input) {
   const bool returning = state_ == ExploreState::returning;
   if (plan_to_goal(input) || (returning && clear_contacts(input) && plan_to_goal(input)) ||
       (start_crossing_traces(input) && plan_to_goal(input)) ||
-      (returning && start_following_trail(input) && plan_to_goal(input)) ||
-      (returning && start_squeezing(input) && plan_to_goal(input))) {
+      (returning && start_following_trail(input) && plan_to_goal(input))) {
     fresh_look_ = false;  // the robot drives on: the next failure deserves a look of its own
     note_plan_length(input);
     return true;
@@ -550,8 +533,7 @@ void Explorer::choose_goal(const ExploreInput& input) {
         begin_look(input);
         return;
       }
-      if (clear_contacts(input) || start_crossing_traces(input) || start_following_trail(input) ||
-          start_squeezing(input)) {
+      if (clear_contacts(input) || start_crossing_traces(input) || start_following_trail(input)) {
         map_.compute_reachable(cell_of(input.pose));
         continue;
       }
@@ -578,8 +560,7 @@ void Explorer::finish_exploring(const ExploreInput& input, FinishReason reason) 
   resume_after_look_ = false;
   plan_.clear();
   pan_target_rad_ = 0.0;
-  following_trail_ = false;  // the way back follows the trail (or squeezes) only when there is no other
-  squeezing_ = false;
+  following_trail_ = false;  // the way back follows the trail only when there is no other
   if (!params_.explore.return_to_start) {
     state_ = ExploreState::finished;
     return;

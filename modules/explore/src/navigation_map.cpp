@@ -171,25 +171,6 @@ bool NavigationMap::open_trail_cell(const Eigen::Vector2d& position) {
   return true;
 }
 
-std::size_t NavigationMap::open_narrow() {
-  if (grid_.width <= 0) return 0;
-  std::size_t opened = 0;
-  for (int y = window_.y0; y < window_.y1; ++y) {
-    for (int x = window_.x0; x < window_.x1; ++x) {
-      if (!opens_narrow(x, y)) continue;
-      traversability_[index(x, y)] = static_cast<std::uint8_t>(Traversability::inflated);
-      ++opened;
-    }
-  }
-  return opened;
-}
-
-// Free (an unknown cell is closed for what it may hide, not for its clearance), closed, and
-// the disc fits: the safety check would let the robot stand there.
-bool NavigationMap::opens_narrow(int x, int y) const {
-  return grid_.at(x, y) == CellState::free && !passable(x, y) && occupied_distance_m(x, y) >= params_.robot_radius_m;
-}
-
 // Breadth-first from `seed` (marked by the caller) over the fixed queue: `visit(x, y)` for
 // each cell taken, `enter(nx, ny, from)` for each neighbour by `steps`, which marks it and
 // returns true to queue it. Returns how many cells were queued; they stay in queue_.

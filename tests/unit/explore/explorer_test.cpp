@@ -718,22 +718,6 @@ TEST(Explorer, ABoxedInRobotFollowsItsOwnPathBackRatherThanConcludeExplored) {
   EXPECT_EQ(concluding.counters().trail_follows, 0U);
 }
 
-// Without the trail, the last resort of squeezing (explore.squeeze_last_resort) opens the
-// door too: the disc fits through it, 0.3 m and more from the smeared cell and the jambs.
-TEST(Explorer, ABoxedInRobotSqueezesThroughTheDoorRatherThanConcludeExplored) {
-  DoorClosedBehind scene(no_look_params(100, 60));
-  scene.params.explore.trail_length_m = 0.0;
-  scene.params.explore.squeeze_last_resort = true;
-  Explorer explorer(scene.params);
-  const ExploreOutput output = scene.drive_through_and_smear(explorer, 0.05, 40.0);
-  EXPECT_EQ(explorer.finish_reason(), FinishReason::none);
-  EXPECT_EQ(output.state, ExploreState::drive);
-  EXPECT_EQ(explorer.counters().squeezes, 1U);
-  EXPECT_EQ(explorer.counters().trail_follows, 0U);
-  EXPECT_LT(explorer.goal().position.x(), 3.0);  // the unknown top of the first room
-  EXPECT_GT(explorer.goal().position.y(), 3.5);
-}
-
 // The same door closed behind it on the way back: it follows its trail back to the start.
 TEST(Explorer, NoWayBackButItsOwnPathIsNotGivenUp) {
   ExploreParams params = test_params(100, 60);

@@ -90,31 +90,5 @@ TEST(NavigationMap, TheTrailOpensTheCellsTheSafetyCheckWouldLetTheRobotCross) {
   EXPECT_FALSE(closer.reachable(45, 31));
 }
 
-// The last resort without a trail: every free cell where the disc fits opens, the door's row
-// included, and nothing where it does not (the smeared cell's own neighbours, the walls).
-TEST(NavigationMap, SqueezingOpensEveryFreeCellWhereTheDiscFits) {
-  SmearedDoor door;
-  NavigationMap map(door.params);
-  ASSERT_TRUE(map.rebuild(door.grid.view(), {1.5, 3.05}, {1.5, 3.05}));
-  core::AllocationScope counter;
-  EXPECT_GT(map.open_narrow(), 0U);
-  EXPECT_EQ(counter.allocations(), 0U);
-  EXPECT_EQ(map.traversability(29, 30), Traversability::inflated);
-  EXPECT_EQ(map.traversability(31, 30), Traversability::inflated);  // in the door, 0.3 m from the jambs
-  EXPECT_FALSE(map.passable(29, 32));  // 0.1 m from the smeared cell
-  EXPECT_FALSE(map.passable(31, 28));  // 0.2 m from the jamb
-  EXPECT_FALSE(map.passable(31, 26));  // the wall
-  for (int y = 0; y < 60; ++y) {
-    for (int x = 0; x < 60; ++x) {
-      if (door.grid.view().at(x, y) == CellState::free && map.occupied_distance_m(x, y) < door.params.robot_radius_m) {
-        EXPECT_FALSE(map.passable(x, y)) << x << ", " << y;
-      }
-    }
-  }
-  map.compute_reachable({15, 30});
-  EXPECT_TRUE(map.reachable(45, 30));
-  EXPECT_EQ(map.open_narrow(), 0U);  // nothing left to open
-}
-
 }  // namespace
 }  // namespace stereoscout::explore

@@ -41,7 +41,6 @@ enum class ExploreEventKind : std::uint8_t {
   contacts_cleared,  // before concluding "explored" or "no way back"
   crossing_traces,   // before concluding "no plan" or "explored": a person's old traces are crossed
   following_trail,   // before concluding "explored" or "no way back": plans may follow the robot's own path
-  squeezing,         // ... then: plans may pass every gap the robot's disc fits through (squeeze_last_resort)
   explored,          // no goal worth min_goal_value is left
   time_limit,        // explore.time_limit_s reached
   return_failed,     // no way back to the start, or no progress on it

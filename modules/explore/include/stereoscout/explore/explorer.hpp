@@ -115,7 +115,6 @@ struct ExploreCounters {
   std::uint64_t contact_clears = 0;  // contacts forgotten (but repeated ones) before concluding "explored" or "no way back"
   std::uint64_t trace_crossings = 0;   // plans let cross old traces rather than conclude "no plan" or "nothing left"
   std::uint64_t trail_follows = 0;     // plans let follow the robot's own path rather than conclude "explored" or "no way back"
-  std::uint64_t squeezes = 0;          // plans let pass every gap the robot's disc fits through rather than conclude so (squeeze_last_resort)
   std::uint64_t traces_confirmed = 0;  // trace cells still occupied after a look: obstacles since
   std::uint64_t plans_kept_for_walkers = 0;  // blocked only by passers-by: kept (wait_for_walkers)
   std::uint64_t walker_waits_ended = 0;      // a goal's walker_wait_per_goal_s used up: replanned as without it
@@ -153,7 +152,6 @@ class Explorer {
   bool clear_contacts(const ExploreInput& input);
   bool start_crossing_traces(const ExploreInput& input);
   bool start_following_trail(const ExploreInput& input);
-  bool start_squeezing(const ExploreInput& input);
   template <typename Changed>
   bool start_last_resort(bool& active, Changed&& changed, ExploreEventKind kind, std::uint64_t& count,
                          const ExploreInput& input);
@@ -233,8 +231,6 @@ class Explorer {
   bool crossing_traces_ = false;   // the navigation map holds a person's old traces free
   bool following_trail_ = false;   // ... and the robot's own path open
   std::size_t trail_cells_opened_ = 0;  // by the last rebuild
-  bool squeezing_ = false;         // ... and every gap the robot's disc fits through open
-  std::size_t squeeze_cells_opened_ = 0;  // by the last rebuild
   bool stalled_ = false;           // this tick
   bool holding_for_scan_ = false;  // standing still for what the scan guard saw
   double scan_hold_until_s_ = 0.0;  // the last blocking scan's time + scan_guard_max_age_s

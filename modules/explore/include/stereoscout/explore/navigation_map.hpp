@@ -63,10 +63,6 @@ class NavigationMap {
   // clearance, and no nearer an occupied cell than the robot's radius, become passable at the
   // highest obstacle cost (the explorer's last resort, trail_memory.hpp). Returns how many.
   std::size_t open_trail(const TrailMemory& trail);
-  // After rebuild(): every free cell that is lethal only for its clearance, and no nearer an
-  // occupied cell than the robot's radius, becomes passable at the highest obstacle cost (the
-  // explorer's last resort, explore.squeeze_last_resort). Returns how many.
-  std::size_t open_narrow();
 
   const GridView& grid() const { return grid_; }
   const CellBox& window() const { return window_; }
@@ -128,7 +124,6 @@ class NavigationMap {
   void classify();
   void open_way_out();
   bool open_trail_cell(const Eigen::Vector2d& position);
-  bool opens_narrow(int x, int y) const;  // lethal for its clearance only, and the disc fits
   double site_distance_m(const std::int32_t* sites, int x, int y) const;
   bool under_robot(int x, int y) const;
   void find_pockets();
