@@ -69,7 +69,8 @@ struct Scene {
   // The default config's, with the cell-counted margin and lattice kept at their metric size.
   ExploreParams params() const {
     ExploreParams params =
-        ExploreParams::from_config(core::ExploreConfig{}, core::RobotConfig{}, core::CameraConfig{}, core::VisionConfig{}, grid, grid);
+        ExploreParams::from_config(core::ExploreConfig{}, core::RobotConfig{}, core::CameraConfig{},
+                                   core::VisionConfig{}, grid, grid);
     const double scale = 0.1 / resolution_m;
     params.explore.lethal_margin_cells *= scale;
     params.explore.candidate_stride_cells = static_cast<int>(std::lround(params.explore.candidate_stride_cells * scale));
