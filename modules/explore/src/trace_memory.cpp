@@ -14,7 +14,8 @@ constexpr float kNever = -std::numeric_limits<float>::infinity();
 // Cells compared a block at a time: between two updates nearly every block is unchanged.
 constexpr std::size_t kCompareBlock = 64;
 
-// Visits each cell of `grid` whose centre lies within radius_m of `centre`.
+// Visits each cell of `grid` whose centre lies within radius_m of `centre`:
+// visit(x, y, index, distance_m).
 template <typename Visit>
 void for_cells_within(const GridView& grid, const Eigen::Vector2d& centre, double radius_m, Visit&& visit) {
   const int reach = static_cast<int>(std::ceil(radius_m / grid.resolution_m));
@@ -23,7 +24,7 @@ void for_cells_within(const GridView& grid, const Eigen::Vector2d& centre, doubl
     for (int x = middle.x() - reach; x <= middle.x() + reach; ++x) {
       if (!grid.contains(x, y)) continue;
       const double distance_m = (grid.center(x, y) - centre).norm();
-      if (distance_m <= radius_m) visit(grid.index(x, y), distance_m);
+      if (distance_m <= radius_m) visit(x, y, grid.index(x, y), distance_m);
     }
   }
 }
@@ -171,7 +172,7 @@ std::size_t TraceMemory::confirm_near(const GridView& grid, const Eigen::Vector2
                                       double time_s) {
   if (forget_after_s_ <= 0.0 || !same_geometry(grid)) return 0;
   std::size_t confirmed = 0;
-  for_cells_within(grid, centre, confirm_radius_m_, [&](std::size_t i, double distance_m) {
+  for_cells_within(grid, centre, confirm_radius_m_, [&](int, int, std::size_t i, double distance_m) {
     if (distance_m < seen_from_m || !occupied_trace(grid, i, time_s)) return;
     turned_occupied_s_[i] = kNever;
     ++confirmed;
@@ -184,10 +185,8 @@ double TraceMemory::nearest_trace_ahead_m(const GridView& grid, const Eigen::Vec
                                           const Eigen::Vector2d& heading, double radius_m, double time_s) const {
   double nearest_m = std::numeric_limits<double>::infinity();
   if (forget_after_s_ <= 0.0 || !same_geometry(grid)) return nearest_m;
-  for_cells_within(grid, centre, radius_m, [&](std::size_t i, double distance_m) {
+  for_cells_within(grid, centre, radius_m, [&](int x, int y, std::size_t i, double distance_m) {
     if (distance_m >= nearest_m || !occupied_trace(grid, i, time_s)) return;
-    const int x = static_cast<int>(i % static_cast<std::size_t>(grid.width));
-    const int y = static_cast<int>(i / static_cast<std::size_t>(grid.width));
     if ((grid.center(x, y) - centre).dot(heading) > 0.0) nearest_m = distance_m;
   });
   return nearest_m;

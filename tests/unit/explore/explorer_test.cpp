@@ -1489,6 +1489,16 @@ double drive_until_stopped(Explorer& explorer, const GridView& grid, double x, d
   return x;
 }
 
+// The person walks past the door; the look ends 10 s later and the robot drives at the trace
+// until the safety check stops it. Returns the x where it stopped (time_s: that tick's time).
+double drive_to_the_trace(TraceInTheDoor& door, Explorer& explorer, double& time_s) {
+  const GridView grid = door.scene.grid.view();
+  door.person_walks_past(explorer);
+  EXPECT_EQ(finish_a_look(explorer, grid, 1.5, 3.05, 11.0).state, ExploreState::drive);
+  time_s = 11.0;
+  return drive_until_stopped(explorer, grid, 1.5, time_s);
+}
+
 // Moves the robot back along y = 3.05 m in 5 cm steps while the explorer backs it off; returns
 // the x where the look began (time_s: that tick's time).
 double back_off_until_look(Explorer& explorer, const GridView& grid, double x, double& time_s) {
@@ -1555,10 +1565,8 @@ TEST(Explorer, ATraceStillThereAfterALookNearItIsAnObstacleAgain) {
   TraceInTheDoor door;
   Explorer explorer(door.params);
   const GridView grid = door.scene.grid.view();
-  door.person_walks_past(explorer);
-  ASSERT_EQ(finish_a_look(explorer, grid, 1.5, 3.05, 11.0).state, ExploreState::drive);
-  double time_s = 11.0;
-  const double stopped_x = drive_until_stopped(explorer, grid, 1.5, time_s);
+  double time_s = 0.0;
+  const double stopped_x = drive_to_the_trace(door, explorer, time_s);
   const double look_x = back_off_until_look(explorer, grid, stopped_x, time_s);
   ASSERT_EQ(explorer.state(), ExploreState::look_around);
   finish_a_look(explorer, grid, look_x, 3.05, time_s + 2.0);
@@ -1574,10 +1582,8 @@ TEST(Explorer, WithoutSeenFloorOnlyTheLookAtTheStopConfirmsTheTraceInTheBlindZon
   door.params.explore.trace_confirm_seen_floor = false;
   Explorer explorer(door.params);
   const GridView grid = door.scene.grid.view();
-  door.person_walks_past(explorer);
-  ASSERT_EQ(finish_a_look(explorer, grid, 1.5, 3.05, 11.0).state, ExploreState::drive);
-  double time_s = 11.0;
-  const double stopped_x = drive_until_stopped(explorer, grid, 1.5, time_s);
+  double time_s = 0.0;
+  const double stopped_x = drive_to_the_trace(door, explorer, time_s);
   EXPECT_EQ(explorer.state(), ExploreState::look_around);
   EXPECT_EQ(explorer.counters().back_offs_to_see, 0U);
   finish_a_look(explorer, grid, stopped_x, 3.05, time_s + 2.0);
