@@ -296,6 +296,7 @@ void write_counters(report::JsonWriter& json, const stack::Stack& stack) {
       .unsigned_integer("contact_cells_on_trail", stack.explorer().contacts().on_trail())
       .unsigned_integer("contact_cells_explained", stack.explorer().contacts().explained())
       .unsigned_integer("contact_clears", e.contact_clears)
+      .unsigned_integer("blacklist_releases", e.blacklist_releases)
       .unsigned_integer("recent_points_kept", stack.explorer().recent_obstacles().kept())
       .unsigned_integer("recent_points_seen_past", stack.explorer().recent_obstacles().seen_past())
       .unsigned_integer("recent_points_dropped_full", stack.explorer().recent_obstacles().dropped_full())

@@ -21,6 +21,7 @@ const char* to_string(ExploreEventKind kind) {
     case ExploreEventKind::stall: return "stall";
     case ExploreEventKind::look: return "look";
     case ExploreEventKind::contacts_cleared: return "contacts_cleared";
+    case ExploreEventKind::blacklist_released: return "blacklist_released";
     case ExploreEventKind::crossing_traces: return "crossing_traces";
     case ExploreEventKind::following_trail: return "following_trail";
     case ExploreEventKind::plan_kept: return "plan_kept";

@@ -262,6 +262,18 @@ bool Explorer::clear_contacts(const ExploreInput& input) {
   return true;
 }
 
+// A goal blacklisted for what was in the robot's way at the time (its own door narrowed for a
+// moment) excludes candidates within blacklist_radius_m for blacklist_hold_s, and with them the
+// places the frontier behind it is seen from: "nothing left" would then be concluded on goals
+// only put aside. So their holds are lifted first, each goal's at most blacklist_releases times,
+// and a room the robot cannot enter still lets the run end. True when any was held.
+bool Explorer::release_blacklist(const ExploreInput& input) {
+  if (memory_.release_held(input.time_s, params_.explore.blacklist_releases) == 0) return false;
+  ++counters_.blacklist_releases;
+  note(ExploreEventKind::blacklist_released, input);
+  return true;
+}
+
 // A person who walked past a door while the robot looked out of the room leaves cells beyond
 // it that no view from inside clears, and they can shut the robot in. So neither "no plan" nor
 // "nothing left" is concluded on a person's old traces (trace_memory.hpp): the map is rebuilt
@@ -533,7 +545,8 @@ void Explorer::choose_goal(const ExploreInput& input) {
         begin_look(input);
         return;
       }
-      if (clear_contacts(input) || start_crossing_traces(input) || start_following_trail(input)) {
+      if (clear_contacts(input) || release_blacklist(input) || start_crossing_traces(input) ||
+          start_following_trail(input)) {
         map_.compute_reachable(cell_of(input.pose));
         continue;
       }

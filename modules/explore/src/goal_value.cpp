@@ -73,6 +73,17 @@ bool GoalMemory::held(const Entry& entry, double time_s) const {
   return time_s - entry.last_failure_s < hold_s;
 }
 
+std::size_t GoalMemory::release_held(double time_s, int max_blacklistings) {
+  if (hold_s_ <= 0.0) return 0;
+  std::size_t released = 0;
+  for (Entry& entry : entries_) {
+    if (entry.visited || entry.blacklistings > max_blacklistings || !held(entry, time_s)) continue;
+    entry.failures = 0;
+    ++released;
+  }
+  return released;
+}
+
 void GoalMemory::record_visit(const Eigen::Vector2d& position) {
   Entry* entry = find(position);
   if (entry == nullptr) entry = entries_.emplace_back(Entry{position, 0});

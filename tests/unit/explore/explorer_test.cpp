@@ -1243,6 +1243,39 @@ TEST(Explorer, BlacklistsGoalsThatKeepFailingThenFinishes) {
   EXPECT_EQ(counters.plan_failures, counters.goal_failures);
 }
 
+// "Explored" is not concluded on goals only put aside: when every goal left is blacklisted
+// and held, the holds are lifted once and the goals tried again; blacklisted a second time,
+// they keep their holds and the run ends. With blacklist_releases 0 it ends at once.
+TEST(Explorer, HeldBlacklistingsAreLiftedOnceBeforeConcludingExplored) {
+  Corridor scene;
+  for (const int releases : {1, 0}) {
+    ExploreParams params = no_look_params(100, 60);
+    params.explore.max_plan_waypoints = 3;  // every plan fails: too long for the plan
+    params.explore.blacklist_releases = releases;
+    Explorer explorer(params);
+    for (int tick = 0; tick < 400 && explorer.state() != ExploreState::finished; ++tick) {
+      explorer.step(input_at(scene.grid.view(), 1.5, 3.0, 0.0, 0.1 * tick, tick == 0));
+    }
+    ASSERT_EQ(explorer.state(), ExploreState::finished) << releases;
+    EXPECT_EQ(explorer.finish_reason(), FinishReason::explored);
+    const ExploreCounters& counters = explorer.counters();
+    EXPECT_EQ(counters.blacklist_releases, static_cast<std::uint64_t>(releases));
+    EXPECT_EQ(journaled(explorer, ExploreEventKind::blacklist_released), static_cast<std::size_t>(releases));
+    EXPECT_EQ(counters.goal_failures, counters.goals_blacklisted * 3U);
+    if (releases == 0) continue;
+    // Every goal blacklisted before the release is blacklisted again after it.
+    std::size_t before = 0, after = 0;
+    bool released = false;
+    for (std::size_t i = 0; i < explorer.journal().size(); ++i) {
+      const ExploreEventKind kind = explorer.journal()[i].kind;
+      if (kind == ExploreEventKind::blacklist_released) released = true;
+      if (kind == ExploreEventKind::goal_blacklisted) ++(released ? after : before);
+    }
+    EXPECT_GT(before, 0U);
+    EXPECT_EQ(after, before);
+  }
+}
+
 // The journal tells the same story as the counters, goal by goal: each chosen goal fails for
 // want of a plan, the third failure of a goal blacklists it, and the run ends "explored".
 TEST(Explorer, TheJournalRecordsWhyEachGoalFailed) {

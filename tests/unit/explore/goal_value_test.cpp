@@ -253,6 +253,39 @@ TEST(GoalMemory, ABlacklistingLastsItsHoldThenTwiceAsLongTheNextTime) {
   EXPECT_TRUE(for_good.excluded(beside, 1e6));
 }
 
+// Before concluding "explored" the explorer lifts the holds of goals put aside: those
+// blacklisted at most max_blacklistings times, not visited ones, not ones blacklisted for good
+// (no hold). A released goal counts its failures afresh, and its next blacklisting holds twice
+// as long and is not released again at 1.
+TEST(GoalMemory, ReleasingLiftsTheHoldsOfGoalsBlacklistedAtMostSoOften) {
+  GoalMemory memory(8, 0.5, 2.0, 3, 0.0, 600.0);
+  const Eigen::Vector2d goal(6.05, 4.95);
+  const Eigen::Vector2d beside = goal + Eigen::Vector2d(1.5, 0.0);
+  EXPECT_EQ(memory.release_held(0.0, 1), 0U);  // nothing held
+  for (double t : {100.0, 110.0, 120.0}) memory.record_failure(goal, t);
+  const Eigen::Vector2d visited(3.0, 3.0);
+  memory.record_visit(visited);
+  ASSERT_TRUE(memory.excluded(beside, 200.0));
+  EXPECT_EQ(memory.release_held(200.0, 0), 0U);  // 0: never
+  EXPECT_EQ(memory.release_held(200.0, 1), 1U);
+  EXPECT_FALSE(memory.excluded(beside, 200.0));
+  EXPECT_FALSE(memory.excluded(goal, 200.0));
+  EXPECT_TRUE(memory.excluded(visited, 200.0));
+  EXPECT_EQ(memory.release_held(201.0, 1), 0U);  // nothing held any more
+  EXPECT_FALSE(memory.record_failure(goal, 300.0));
+  EXPECT_FALSE(memory.record_failure(goal, 310.0));
+  EXPECT_TRUE(memory.record_failure(goal, 320.0));
+  EXPECT_EQ(memory.blacklisted(), 2U);
+  EXPECT_EQ(memory.release_held(400.0, 1), 0U);  // blacklisted twice now
+  EXPECT_TRUE(memory.excluded(beside, 1519.0));  // 1200 s from its last failure
+  EXPECT_EQ(memory.release_held(400.0, 2), 1U);
+
+  GoalMemory for_good(8, 0.5, 2.0, 3);  // no hold: blacklisted for good, never released
+  for (double t : {100.0, 200.0, 300.0}) for_good.record_failure(goal, t);
+  EXPECT_EQ(for_good.release_held(400.0, 100), 0U);
+  EXPECT_TRUE(for_good.excluded(beside, 400.0));
+}
+
 // A known free room (walls around) with an unknown region beyond its right wall seen through
 // a doorway, and a second free room that is not connected to the robot's.
 struct SelectionScene {

@@ -39,6 +39,7 @@ enum class ExploreEventKind : std::uint8_t {
   stall,             // forward motion commanded, none made: a contact
   look,              // a 360-degree look begins
   contacts_cleared,  // before concluding "explored" or "no way back"
+  blacklist_released,  // before concluding "explored": held blacklisted goals may be chosen again
   crossing_traces,   // before concluding "no plan" or "explored": a person's old traces are crossed
   following_trail,   // before concluding "explored" or "no way back": plans may follow the robot's own path
   explored,          // no goal worth min_goal_value is left

@@ -113,6 +113,7 @@ struct ExploreCounters {
   std::uint64_t back_offs_to_see = 0;  // ... a safety stop on a trace where the camera sees no floor
   std::uint64_t back_off_turns = 0;  // ... turning in place first, the way straight back shut
   std::uint64_t contact_clears = 0;  // contacts forgotten (but repeated ones) before concluding "explored" or "no way back"
+  std::uint64_t blacklist_releases = 0;  // held blacklistings lifted before concluding "explored" (blacklist_releases)
   std::uint64_t trace_crossings = 0;   // plans let cross old traces rather than conclude "no plan" or "nothing left"
   std::uint64_t trail_follows = 0;     // plans let follow the robot's own path rather than conclude "explored" or "no way back"
   std::uint64_t traces_confirmed = 0;  // trace cells still occupied after a look: obstacles since
@@ -150,6 +151,7 @@ class Explorer {
   void rebuild(const ExploreInput& input);
   void rebuild_map(const ExploreInput& input);
   bool clear_contacts(const ExploreInput& input);
+  bool release_blacklist(const ExploreInput& input);
   bool start_crossing_traces(const ExploreInput& input);
   bool start_following_trail(const ExploreInput& input);
   template <typename Changed>

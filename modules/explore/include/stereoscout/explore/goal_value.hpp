@@ -54,6 +54,10 @@ class GoalMemory {
   // True when a candidate at `position` is near a blacklisted or visited goal, or at time_s
   // near one that failed within the cooldown.
   bool excluded(const Eigen::Vector2d& position, double time_s) const;
+  // Lifts the hold at time_s of every goal blacklisted at most max_blacklistings times (not of
+  // one blacklisted for good, without a hold); they may be chosen again, their failures counted
+  // afresh, and their next blacklisting holds twice as long. Returns how many.
+  std::size_t release_held(double time_s, int max_blacklistings);
   std::uint64_t blacklisted() const { return blacklisted_; }
   std::uint64_t forgotten() const { return forgotten_; }  // memory was full
 
