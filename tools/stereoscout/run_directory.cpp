@@ -295,6 +295,7 @@ void write_counters(report::JsonWriter& json, const stack::Stack& stack) {
       .unsigned_integer("contact_cells_repeated", stack.explorer().contacts().repeated())
       .unsigned_integer("contact_cells_on_trail", stack.explorer().contacts().on_trail())
       .unsigned_integer("contact_cells_explained", stack.explorer().contacts().explained())
+      .unsigned_integer("contact_stalls_toward_mapped", stack.explorer().contacts().toward_mapped())
       .unsigned_integer("contact_clears", e.contact_clears)
       .unsigned_integer("blacklist_releases", e.blacklist_releases)
       .unsigned_integer("recent_points_kept", stack.explorer().recent_obstacles().kept())

@@ -63,6 +63,7 @@ ContactMemory::ContactMemory(const core::ExploreConfig& config, int max_width, i
       repeat_radius_m_(config.contact_repeat_radius_m),
       trail_radius_m_(config.trail_contact_radius_m),
       explained_margin_m_(config.contact_explained_margin_m),
+      toward_mapped_m_(config.contact_toward_mapped_m),
       contacts_(static_cast<std::size_t>(config.contact_memory)),
       cleared_points_(static_cast<std::size_t>(config.contact_memory)),
       explained_at_(static_cast<std::size_t>(config.contact_memory)),
@@ -73,10 +74,20 @@ void ContactMemory::record(const GridView& grid, const core::Pose2& pose, double
                            const TrailMemory& trail) {
   // Just beyond the rim: the surface the robot pushes against lies in that cell.
   const double reach = radius_m + 0.5 * grid.resolution_m;
-  const bool explained = mapped_surface_at_rim(grid, pose, radius_m) && !explained_here_before(pose.translation());
-  if (explained) explained_at_.emplace_back(pose.translation());  // none when full: the oldest stay
+  const bool first_here = !explained_here_before(pose.translation());
+  Eigen::Vector2d to_surface;
+  const bool explained = first_here && explained_margin_m_ > 0.0 &&
+                         nearest_mapped_in_front(grid, pose, radius_m + explained_margin_m_, to_surface);
+  // Straight ahead unless a mapped surface near the front half of the rim says where.
+  double facing = pose.theta;
+  if (!explained && first_here && toward_mapped_m_ > 0.0 &&
+      nearest_mapped_in_front(grid, pose, radius_m + toward_mapped_m_, to_surface)) {
+    facing = std::atan2(to_surface.y(), to_surface.x());
+    ++toward_mapped_;
+  }
+  if (explained || facing != pose.theta) explained_at_.emplace_back(pose.translation());  // none when full
   for (const double offset : {0.0, -arc_rad_, arc_rad_}) {
-    const double angle = pose.theta + offset;
+    const double angle = facing + offset;
     const Eigen::Vector2d point = pose.translation() + reach * Eigen::Vector2d(std::cos(angle), std::sin(angle));
     if (on_trail(point, trail)) {
       ++on_trail_;
@@ -104,22 +115,29 @@ bool ContactMemory::on_trail(const Eigen::Vector2d& point, const TrailMemory& tr
   return false;
 }
 
-bool ContactMemory::mapped_surface_at_rim(const GridView& grid, const core::Pose2& pose, double radius_m) const {
-  if (explained_margin_m_ <= 0.0) return false;
-  const double reach_m = radius_m + explained_margin_m_;
+// The occupied cell nearest the robot's centre within reach_m, in front of its middle (behind
+// it a surface cannot stop a forward push): true when there is one, its offset from the centre
+// in `offset`.
+bool ContactMemory::nearest_mapped_in_front(const GridView& grid, const core::Pose2& pose, double reach_m,
+                                            Eigen::Vector2d& offset) const {
   const Eigen::Vector2d centre = pose.translation();
   const Eigen::Vector2d heading(std::cos(pose.theta), std::sin(pose.theta));
   const Eigen::Vector2i low = grid.cell_of(centre - Eigen::Vector2d::Constant(reach_m));
   const Eigen::Vector2i high = grid.cell_of(centre + Eigen::Vector2d::Constant(reach_m));
+  bool found = false;
+  double nearest_m = reach_m;
   for (int y = std::max(low.y(), 0); y <= std::min(high.y(), grid.height - 1); ++y) {
     for (int x = std::max(low.x(), 0); x <= std::min(high.x(), grid.width - 1); ++x) {
       if (grid.at(x, y) != CellState::occupied) continue;
-      const Eigen::Vector2d offset = grid.center(x, y) - centre;
-      // Behind the robot's middle a surface cannot stop a forward push.
-      if (offset.norm() <= reach_m && offset.dot(heading) > 0.0) return true;
+      const Eigen::Vector2d to_cell = grid.center(x, y) - centre;
+      const double distance_m = to_cell.norm();
+      if (distance_m > nearest_m || to_cell.dot(heading) <= 0.0) continue;
+      found = true;
+      nearest_m = distance_m;
+      offset = to_cell;
     }
   }
-  return false;
+  return found;
 }
 
 bool ContactMemory::explained_here_before(const Eigen::Vector2d& position) const {

@@ -232,6 +232,41 @@ TEST(ContactMemory, AStallBesideAMappedJambMarksNoFreeCellAheadOnce) {
   EXPECT_EQ(off.stamp(grid.view(), 11.0).at(31, 33), CellState::occupied);  // ahead: (3.15, 3.32)
 }
 
+// The same stall beside the mapped east jamb, with contact_toward_mapped_m: the contact points
+// are marked towards the jamb, not on the corridor floor straight ahead, so the doorway stays
+// open but for the jamb's side. Once: a second stall there is marked straight ahead. With
+// nothing mapped near the front half of the rim (a blank wall) it is straight ahead as ever.
+TEST(ContactMemory, AStallBesideAMappedJambIsMarkedTowardsItOnce) {
+  const TrailMemory no_trail{core::ExploreConfig{}};
+  TestGrid grid(60, 60, CellState::free);
+  grid.fill(0, 30, 26, 31, CellState::occupied);
+  grid.fill(35, 30, 60, 31, CellState::occupied);
+  const core::Pose2 in_the_door{3.15, 2.92, 0.5 * M_PI};  // the jamb cell (35, 30): 0.42 m off, 72 degrees right
+  core::ExploreConfig config;
+  config.contact_toward_mapped_m = 0.15;
+  ContactMemory memory(config, 60, 60);
+  memory.record(grid.view(), in_the_door, 0.35, 10.0, no_trail);
+  EXPECT_EQ(memory.held(), 3U);
+  EXPECT_EQ(memory.toward_mapped(), 1U);
+  const GridView stamped = memory.stamp(grid.view(), 11.0);
+  EXPECT_EQ(stamped.at(31, 33), CellState::free);      // straight ahead: (3.15, 3.32)
+  EXPECT_EQ(stamped.at(34, 31), CellState::occupied);  // towards the jamb, 25 degrees left of it: (3.44, 3.19)
+  EXPECT_EQ(stamped.at(35, 28), CellState::occupied);  // 25 degrees right of it: (3.55, 2.87)
+  for (int x = 26; x <= 31; ++x) {
+    for (int y = 29; y <= 34; ++y) EXPECT_EQ(stamped.at(x, y), CellState::free) << x << "," << y;  // the doorway's west part
+  }
+  memory.record(grid.view(), core::Pose2{3.17, 2.95, 0.5 * M_PI}, 0.35, 30.0, no_trail);
+  EXPECT_EQ(memory.toward_mapped(), 1U);
+  EXPECT_EQ(memory.stamp(grid.view(), 31.0).at(31, 33), CellState::occupied);
+
+  TestGrid blank_wall(60, 60, CellState::free);
+  blank_wall.fill(40, 0, 60, 60, CellState::unknown);
+  ContactMemory at_blank_wall(config, 60, 60);
+  at_blank_wall.record(blank_wall.view(), core::Pose2{3.64, 3.05, 0.0}, 0.35, 10.0, no_trail);
+  EXPECT_EQ(at_blank_wall.toward_mapped(), 0U);
+  EXPECT_EQ(at_blank_wall.stamp(blank_wall.view(), 11.0).at(40, 30), CellState::occupied);  // ahead: (4.04, 3.05)
+}
+
 // What a mapped surface does not explain: a stall against a blank wall (unknown cells ahead)
 // marks them even with a mapped corner beside the robot, and a surface behind the robot's
 // middle cannot stop it going forward.

@@ -102,6 +102,7 @@ class ContactMemory {
   std::uint64_t repeated() const { return repeated_; }  // contacts made again where one was cleared
   std::uint64_t on_trail() const { return on_trail_; }  // not recorded: the robot had driven there
   std::uint64_t explained() const { return explained_; }  // not recorded: free, beside a mapped surface
+  std::uint64_t toward_mapped() const { return toward_mapped_; }  // stalls marked towards a mapped surface
   std::uint64_t grid_too_large() const { return grid_too_large_; }
 
  private:
@@ -114,7 +115,8 @@ class ContactMemory {
   bool keep(const Contact& contact, const GridView& grid, double time_s);
   bool near_a_cleared_contact(const Eigen::Vector2d& point) const;
   bool on_trail(const Eigen::Vector2d& point, const TrailMemory& trail) const;
-  bool mapped_surface_at_rim(const GridView& grid, const core::Pose2& pose, double radius_m) const;
+  bool nearest_mapped_in_front(const GridView& grid, const core::Pose2& pose, double reach_m,
+                               Eigen::Vector2d& offset) const;
   bool explained_here_before(const Eigen::Vector2d& position) const;
 
   double arc_rad_;
@@ -122,6 +124,7 @@ class ContactMemory {
   double repeat_radius_m_;
   double trail_radius_m_;
   double explained_margin_m_;
+  double toward_mapped_m_;
   core::FixedVector<Contact> contacts_;
   core::FixedVector<Eigen::Vector2d> cleared_points_;  // the oldest are kept when it is full
   core::FixedVector<Eigen::Vector2d> explained_at_;    // where explained stalls were; likewise
@@ -135,6 +138,7 @@ class ContactMemory {
   std::uint64_t repeated_ = 0;
   std::uint64_t on_trail_ = 0;
   std::uint64_t explained_ = 0;
+  std::uint64_t toward_mapped_ = 0;
   std::uint64_t grid_too_large_ = 0;
 };
 
