@@ -205,28 +205,41 @@ TEST(ContactMemory, ContactPointsWhereTheRobotHadDrivenAreNotRecorded) {
 // it. The jamb is in the grid, so the stall is explained: no contact cell is marked on the
 // corridor floor ahead, which the grid holds free and only contact_hold_s would end (it would
 // shut the door the robot stands in). Once: a second stall there is a contact as any.
-TEST(ContactMemory, AStallBesideAMappedJambMarksNoFreeCellAheadOnce) {
+// A mapped wall at y = 3 m with a 0.9 m door (cells 26-34 open), and a robot in it 0.1 m east of
+// its middle, facing north: the east jamb's cell (35, 30) is 0.42 m from its centre, 72 degrees
+// right of its heading.
+struct RobotInADoor {
+  TestGrid grid{60, 60, CellState::free};
+  const core::Pose2 pose{3.15, 2.92, 0.5 * M_PI};
   const TrailMemory no_trail{core::ExploreConfig{}};
-  TestGrid grid(60, 60, CellState::free);
-  grid.fill(0, 30, 26, 31, CellState::occupied);
-  grid.fill(35, 30, 60, 31, CellState::occupied);
-  const core::Pose2 in_the_door{3.15, 2.92, 0.5 * M_PI};  // the jamb cell (35, 30): 0.42 m from the centre
+  RobotInADoor() {
+    grid.fill(0, 30, 26, 31, CellState::occupied);
+    grid.fill(35, 30, 60, 31, CellState::occupied);
+  }
+  void stall(ContactMemory& memory, const core::Pose2& at, double time_s) const {
+    memory.record(grid.view(), at, 0.35, time_s, no_trail);
+  }
+};
+
+TEST(ContactMemory, AStallBesideAMappedJambMarksNoFreeCellAheadOnce) {
+  const RobotInADoor door;
+  const TestGrid& grid = door.grid;
   core::ExploreConfig config;
   config.contact_explained_margin_m = 0.15;
   ContactMemory memory(config, 60, 60);
-  memory.record(grid.view(), in_the_door, 0.35, 10.0, no_trail);
+  door.stall(memory, door.pose, 10.0);
   EXPECT_EQ(memory.held(), 0U);
   EXPECT_EQ(memory.explained(), 3U);
   EXPECT_EQ(memory.stamp(grid.view(), 11.0).cells, grid.view().cells);
   // Stalled again where it stood (the pose is off and the plan leads into the same surface):
   // no longer explained, the cells ahead are marked and the next plan goes elsewhere.
-  memory.record(grid.view(), core::Pose2{3.17, 2.95, 0.5 * M_PI}, 0.35, 30.0, no_trail);
+  door.stall(memory, core::Pose2{3.17, 2.95, 0.5 * M_PI}, 30.0);
   EXPECT_EQ(memory.held(), 3U);
   EXPECT_EQ(memory.explained(), 3U);
 
   config.contact_explained_margin_m = 0.0;  // off: the three cells ahead close the doorway
   ContactMemory off(config, 60, 60);
-  off.record(grid.view(), in_the_door, 0.35, 10.0, no_trail);
+  door.stall(off, door.pose, 10.0);
   EXPECT_EQ(off.held(), 3U);
   EXPECT_EQ(off.explained(), 0U);
   EXPECT_EQ(off.stamp(grid.view(), 11.0).at(31, 33), CellState::occupied);  // ahead: (3.15, 3.32)
@@ -237,15 +250,12 @@ TEST(ContactMemory, AStallBesideAMappedJambMarksNoFreeCellAheadOnce) {
 // open but for the jamb's side. Once: a second stall there is marked straight ahead. With
 // nothing mapped near the front half of the rim (a blank wall) it is straight ahead as ever.
 TEST(ContactMemory, AStallBesideAMappedJambIsMarkedTowardsItOnce) {
-  const TrailMemory no_trail{core::ExploreConfig{}};
-  TestGrid grid(60, 60, CellState::free);
-  grid.fill(0, 30, 26, 31, CellState::occupied);
-  grid.fill(35, 30, 60, 31, CellState::occupied);
-  const core::Pose2 in_the_door{3.15, 2.92, 0.5 * M_PI};  // the jamb cell (35, 30): 0.42 m off, 72 degrees right
+  const RobotInADoor door;
+  const TestGrid& grid = door.grid;
   core::ExploreConfig config;
   config.contact_toward_mapped_m = 0.15;
   ContactMemory memory(config, 60, 60);
-  memory.record(grid.view(), in_the_door, 0.35, 10.0, no_trail);
+  door.stall(memory, door.pose, 10.0);
   EXPECT_EQ(memory.held(), 3U);
   EXPECT_EQ(memory.toward_mapped(), 1U);
   const GridView stamped = memory.stamp(grid.view(), 11.0);
@@ -255,14 +265,14 @@ TEST(ContactMemory, AStallBesideAMappedJambIsMarkedTowardsItOnce) {
   for (int x = 26; x <= 31; ++x) {
     for (int y = 29; y <= 34; ++y) EXPECT_EQ(stamped.at(x, y), CellState::free) << x << "," << y;  // the doorway's west part
   }
-  memory.record(grid.view(), core::Pose2{3.17, 2.95, 0.5 * M_PI}, 0.35, 30.0, no_trail);
+  door.stall(memory, core::Pose2{3.17, 2.95, 0.5 * M_PI}, 30.0);
   EXPECT_EQ(memory.toward_mapped(), 1U);
   EXPECT_EQ(memory.stamp(grid.view(), 31.0).at(31, 33), CellState::occupied);
 
   TestGrid blank_wall(60, 60, CellState::free);
   blank_wall.fill(40, 0, 60, 60, CellState::unknown);
   ContactMemory at_blank_wall(config, 60, 60);
-  at_blank_wall.record(blank_wall.view(), core::Pose2{3.64, 3.05, 0.0}, 0.35, 10.0, no_trail);
+  at_blank_wall.record(blank_wall.view(), core::Pose2{3.64, 3.05, 0.0}, 0.35, 10.0, door.no_trail);
   EXPECT_EQ(at_blank_wall.toward_mapped(), 0U);
   EXPECT_EQ(at_blank_wall.stamp(blank_wall.view(), 11.0).at(40, 30), CellState::occupied);  // ahead: (4.04, 3.05)
 }
