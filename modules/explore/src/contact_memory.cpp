@@ -79,13 +79,11 @@ void ContactMemory::record(const GridView& grid, const core::Pose2& pose, double
   const bool explained = first_here && explained_margin_m_ > 0.0 &&
                          nearest_mapped_in_front(grid, pose, radius_m + explained_margin_m_, to_surface);
   // Straight ahead unless a mapped surface near the front half of the rim says where.
-  double facing = pose.theta;
-  if (!explained && first_here && toward_mapped_m_ > 0.0 &&
-      nearest_mapped_in_front(grid, pose, radius_m + toward_mapped_m_, to_surface)) {
-    facing = std::atan2(to_surface.y(), to_surface.x());
-    ++toward_mapped_;
-  }
-  if (explained || facing != pose.theta) explained_at_.emplace_back(pose.translation());  // none when full
+  const bool toward_mapped = !explained && first_here && toward_mapped_m_ > 0.0 &&
+                             nearest_mapped_in_front(grid, pose, radius_m + toward_mapped_m_, to_surface);
+  const double facing = toward_mapped ? std::atan2(to_surface.y(), to_surface.x()) : pose.theta;
+  if (toward_mapped) ++toward_mapped_;
+  if (explained || toward_mapped) explained_at_.emplace_back(pose.translation());  // none when full
   for (const double offset : {0.0, -arc_rad_, arc_rad_}) {
     const double angle = facing + offset;
     const Eigen::Vector2d point = pose.translation() + reach * Eigen::Vector2d(std::cos(angle), std::sin(angle));
