@@ -66,7 +66,7 @@ ContactMemory::ContactMemory(const core::ExploreConfig& config, int max_width, i
       toward_mapped_m_(config.contact_toward_mapped_m),
       contacts_(static_cast<std::size_t>(config.contact_memory)),
       cleared_points_(static_cast<std::size_t>(config.contact_memory)),
-      explained_at_(static_cast<std::size_t>(config.contact_memory)),
+      mapped_stalls_at_(static_cast<std::size_t>(config.contact_memory)),
       cells_(new std::uint8_t[static_cast<std::size_t>(max_width) * static_cast<std::size_t>(max_height)]),
       cell_capacity_(static_cast<std::size_t>(max_width) * static_cast<std::size_t>(max_height)) {}
 
@@ -74,7 +74,7 @@ void ContactMemory::record(const GridView& grid, const core::Pose2& pose, double
                            const TrailMemory& trail) {
   // Just beyond the rim: the surface the robot pushes against lies in that cell.
   const double reach = radius_m + 0.5 * grid.resolution_m;
-  const bool first_here = !explained_here_before(pose.translation());
+  const bool first_here = !mapped_stall_here_before(pose.translation());  // the mapped surface is trusted once a place
   Eigen::Vector2d to_surface;
   const bool explained = first_here && explained_margin_m_ > 0.0 &&
                          nearest_mapped_in_front(grid, pose, radius_m + explained_margin_m_, to_surface);
@@ -83,7 +83,7 @@ void ContactMemory::record(const GridView& grid, const core::Pose2& pose, double
                              nearest_mapped_in_front(grid, pose, radius_m + toward_mapped_m_, to_surface);
   const double facing = toward_mapped ? std::atan2(to_surface.y(), to_surface.x()) : pose.theta;
   if (toward_mapped) ++toward_mapped_;
-  if (explained || toward_mapped) explained_at_.emplace_back(pose.translation());  // none when full
+  if (explained || toward_mapped) mapped_stalls_at_.emplace_back(pose.translation());  // none when full
   for (const double offset : {0.0, -arc_rad_, arc_rad_}) {
     const double angle = facing + offset;
     const Eigen::Vector2d point = pose.translation() + reach * Eigen::Vector2d(std::cos(angle), std::sin(angle));
@@ -138,8 +138,8 @@ bool ContactMemory::nearest_mapped_in_front(const GridView& grid, const core::Po
   return found;
 }
 
-bool ContactMemory::explained_here_before(const Eigen::Vector2d& position) const {
-  return any_within(explained_at_, position, repeat_radius_m_);
+bool ContactMemory::mapped_stall_here_before(const Eigen::Vector2d& position) const {
+  return any_within(mapped_stalls_at_, position, repeat_radius_m_);
 }
 
 bool ContactMemory::near_a_cleared_contact(const Eigen::Vector2d& point) const {

@@ -117,7 +117,7 @@ class ContactMemory {
   bool on_trail(const Eigen::Vector2d& point, const TrailMemory& trail) const;
   bool nearest_mapped_in_front(const GridView& grid, const core::Pose2& pose, double reach_m,
                                Eigen::Vector2d& offset) const;
-  bool explained_here_before(const Eigen::Vector2d& position) const;
+  bool mapped_stall_here_before(const Eigen::Vector2d& position) const;
 
   double arc_rad_;
   double hold_s_;
@@ -127,7 +127,8 @@ class ContactMemory {
   double toward_mapped_m_;
   core::FixedVector<Contact> contacts_;
   core::FixedVector<Eigen::Vector2d> cleared_points_;  // the oldest are kept when it is full
-  core::FixedVector<Eigen::Vector2d> explained_at_;    // where explained stalls were; likewise
+  // Where stalls were explained by, or marked towards, a mapped surface; likewise.
+  core::FixedVector<Eigen::Vector2d> mapped_stalls_at_;
   std::unique_ptr<std::uint8_t[]> cells_;
   std::size_t cell_capacity_;
   std::uint64_t recorded_ = 0;
