@@ -33,6 +33,8 @@ const char* to_string(ExploreEventKind kind) {
     case ExploreEventKind::returned: return "returned";
     case ExploreEventKind::door_sighted: return "door_sighted";
     case ExploreEventKind::door_standoff: return "door_standoff";
+    case ExploreEventKind::gap_shut: return "gap_shut";
+    case ExploreEventKind::shut_gaps_lifted: return "shut_gaps_lifted";
   }
   return "?";
 }

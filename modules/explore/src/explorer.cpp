@@ -106,6 +106,7 @@ Explorer::Explorer(const ExploreParams& params)
               params.explore.goal_failure_radius_m),
       stall_(params.explore),
       contacts_(params.explore, params.max_width, params.max_height),
+      gaps_(params, params.max_width, params.max_height),
       recent_(params.explore, params.max_width, params.max_height),
       traces_(params.explore, params.max_width, params.max_height),
       trail_(params.explore),
@@ -172,6 +173,7 @@ ExploreOutput Explorer::step(const ExploreInput& raw_input) {
   const ExploreInput& input = navigation_input(raw_input);
   if (!started_) start(input);
   trail_.record(position_of(input.pose));
+  gaps_.drove(map_.grid(), position_of(input.pose));
   recent_.observe(input.seen);
   stalled_ = stall_.stalled(input.time_s, stall_position(input));
   ExploreOutput output;
@@ -237,7 +239,8 @@ void Explorer::rebuild_map(const ExploreInput& input) {
   // that no later view covered splits the corridor it started in (the office: the way out of
   // the first office led through it).
   const Eigen::Vector2d extra = position_of(start_pose_);
-  planning_grid_ = recent_.stamp(contacts_.stamp(input.grid, input.time_s), input.pose, input.odometry, input.time_s);
+  const GridView remembered = gaps_.stamp(contacts_.stamp(input.grid, input.time_s), input.time_s);
+  planning_grid_ = recent_.stamp(remembered, input.pose, input.odometry, input.time_s);
   planning_on_copy_ = planning_grid_.cells != input.grid.cells;
   // While crossing traces, plans cross a person's old traces; the safety check (on
   // planning_grid_) never does.
@@ -267,6 +270,24 @@ bool Explorer::clear_contacts(const ExploreInput& input) {
 // places the frontier behind it is seen from: "nothing left" would then be concluded on goals
 // only put aside. So their holds are lifted first, each goal's at most blacklist_releases times,
 // and a room the robot cannot enter still lets the run end. True when any was held.
+// A goal failed at a gap that a view from near shut and the robot never drove through
+// (shut_gaps.hpp): the gap stays shut for planning, so no goal behind it is chosen next.
+void Explorer::shut_gap(const ExploreInput& input) {
+  if (!gaps_.shut(input.time_s)) return;
+  note(ExploreEventKind::gap_shut, input);
+  rebuild_map(input);
+}
+
+// Shut gaps hold for shut_gap_hold_s, but "nothing left" and "no way back" are not concluded
+// on them: they are lifted and the map rebuilt first. True when there were any.
+bool Explorer::lift_shut_gaps(const ExploreInput& input) {
+  if (gaps_.lift() == 0) return false;
+  ++counters_.shut_gap_lifts;
+  note(ExploreEventKind::shut_gaps_lifted, input);
+  rebuild_map(input);
+  return true;
+}
+
 bool Explorer::release_blacklist(const ExploreInput& input) {
   if (memory_.release_held(input.time_s, params_.explore.blacklist_releases) == 0) return false;
   ++counters_.blacklist_releases;
@@ -350,7 +371,13 @@ void Explorer::check_plan(const ExploreInput& input) {
         goal_failed(input);
         return;
       }
-      if (!replan(input)) goal_failed(input);
+      gaps_.blocked(map_, plan_, k, position_of(input.pose));
+      if (replan(input)) {
+        gaps_.forget_blocked();
+        return;
+      }
+      shut_gap(input);
+      goal_failed(input);
       return;
     }
   }
@@ -470,6 +497,7 @@ bool Explorer::replan(const ExploreInput& input) {
   follower_.reset();
   const bool returning = state_ == ExploreState::returning;
   if (plan_to_goal(input) || (returning && clear_contacts(input) && plan_to_goal(input)) ||
+      (returning && lift_shut_gaps(input) && plan_to_goal(input)) ||
       (start_crossing_traces(input) && plan_to_goal(input)) ||
       (returning && start_following_trail(input) && plan_to_goal(input))) {
     fresh_look_ = false;  // the robot drives on: the next failure deserves a look of its own
@@ -545,7 +573,7 @@ void Explorer::choose_goal(const ExploreInput& input) {
         begin_look(input);
         return;
       }
-      if (clear_contacts(input) || release_blacklist(input) || start_crossing_traces(input) ||
+      if (clear_contacts(input) || lift_shut_gaps(input) || release_blacklist(input) || start_crossing_traces(input) ||
           start_following_trail(input)) {
         map_.compute_reachable(cell_of(input.pose));
         continue;

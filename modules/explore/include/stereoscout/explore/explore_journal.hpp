@@ -48,6 +48,8 @@ enum class ExploreEventKind : std::uint8_t {
   returned,          // back at the start
   door_sighted,      // a scan saw the door on the plan: the pose navigated by is corrected across it
   door_standoff,     // at the door's standoff point (explore.door_standoff_m): turning to face the door
+  gap_shut,          // a goal failed at a gap shut from near that the robot never drove through (shut_gap_hold_s)
+  shut_gaps_lifted,  // before concluding "explored" or "no way back"
 };
 const char* to_string(ExploreEventKind kind);
 

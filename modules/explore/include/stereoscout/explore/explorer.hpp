@@ -59,6 +59,7 @@
 #include "stereoscout/explore/path_planner.hpp"
 #include "stereoscout/explore/recent_obstacles.hpp"
 #include "stereoscout/explore/seen_obstacles.hpp"
+#include "stereoscout/explore/shut_gaps.hpp"
 #include "stereoscout/explore/trace_memory.hpp"
 #include "stereoscout/explore/trail_memory.hpp"
 
@@ -114,6 +115,7 @@ struct ExploreCounters {
   std::uint64_t back_off_turns = 0;  // ... turning in place first, the way straight back shut
   std::uint64_t contact_clears = 0;  // contacts forgotten (but repeated ones) before concluding "explored" or "no way back"
   std::uint64_t blacklist_releases = 0;  // held blacklistings lifted before concluding "explored" (blacklist_releases)
+  std::uint64_t shut_gap_lifts = 0;  // shut gaps lifted before concluding "explored" or "no way back" (shut_gap_hold_s)
   std::uint64_t trace_crossings = 0;   // plans let cross old traces rather than conclude "no plan" or "nothing left"
   std::uint64_t trail_follows = 0;     // plans let follow the robot's own path rather than conclude "explored" or "no way back"
   std::uint64_t traces_confirmed = 0;  // trace cells still occupied after a look: obstacles since
@@ -138,6 +140,7 @@ class Explorer {
   const NavigationMap& navigation_map() const { return map_; }
   const GoalValue& goal_value() const { return goal_value_; }
   const ContactMemory& contacts() const { return contacts_; }
+  const ShutGaps& shut_gaps() const { return gaps_; }
   const RecentObstacles& recent_obstacles() const { return recent_; }
   const DoorSighting& door_sighting() const { return sighting_; }
   const DoorStandoff& door_standoff() const { return standoff_; }
@@ -152,6 +155,8 @@ class Explorer {
   void rebuild_map(const ExploreInput& input);
   bool clear_contacts(const ExploreInput& input);
   bool release_blacklist(const ExploreInput& input);
+  void shut_gap(const ExploreInput& input);
+  bool lift_shut_gaps(const ExploreInput& input);
   bool start_crossing_traces(const ExploreInput& input);
   bool start_following_trail(const ExploreInput& input);
   template <typename Changed>
@@ -224,6 +229,7 @@ class Explorer {
   GoalMemory memory_;
   StallDetector stall_;
   ContactMemory contacts_;
+  ShutGaps gaps_;
   RecentObstacles recent_;
   TraceMemory traces_;
   TrailMemory trail_;
