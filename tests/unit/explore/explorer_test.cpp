@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -716,6 +717,45 @@ TEST(Explorer, ABoxedInRobotFollowsItsOwnPathBackRatherThanConcludeExplored) {
   without.drive_through_and_smear(concluding, 0.05, 40.0);
   EXPECT_EQ(concluding.finish_reason(), FinishReason::explored);
   EXPECT_EQ(concluding.counters().trail_follows, 0U);
+}
+
+// DoorClosedBehind's rooms seen from the first: a near view draws what hangs in the door
+// (rows 27-31 of it, leaving 0.3 m) and the goal in the second room fails; then a view from
+// afar opens the door again. With shut_gap_hold_s the door stays shut for planning, so the
+// next goals are on this side; the door's cells are passable again once the hold is lifted.
+struct AfterAViewFromAfar {
+  std::unique_ptr<Explorer> explorer;
+  bool door_open = false;  // the door's middle passable in the navigation map
+};
+
+AfterAViewFromAfar door_after_a_view_from_afar(double shut_gap_hold_s) {
+  ExploreParams params = no_look_params(100, 60);
+  params.explore.shut_gap_hold_s = shut_gap_hold_s;
+  DoorClosedBehind scene(params);
+  AfterAViewFromAfar result{std::make_unique<Explorer>(scene.params)};
+  Explorer& explorer = *result.explorer;
+  explorer.step(input_at(scene.grid.view(), 2.0, 3.05, 0.0, 0.0, true));
+  EXPECT_GT(explorer.goal().position.x(), 3.2);  // the first goal is in the second room
+  scene.grid.fill(30, 27, 32, 32, CellState::occupied);
+  explorer.step(input_at(scene.grid.view(), 2.0, 3.05, 0.0, 0.5, true));
+  EXPECT_EQ(explorer.counters().goal_failures, 1U);
+  EXPECT_LT(explorer.goal().position.x(), 3.0);  // the unknown top of the first room
+  scene.grid.fill(30, 27, 32, 32, CellState::free);
+  explorer.step(input_at(scene.grid.view(), 2.0, 3.05, 0.0, 1.0, true));
+  result.door_open = explorer.navigation_map().passable(31, 30);
+  return result;
+}
+
+TEST(Explorer, AGoalFailedAtADoorANearViewShutKeepsTheDoorShutForPlanning) {
+  const AfterAViewFromAfar shut = door_after_a_view_from_afar(600.0);
+  EXPECT_FALSE(shut.door_open);
+  EXPECT_EQ(shut.explorer->shut_gaps().gaps_shut(), 1U);
+  EXPECT_EQ(journaled(*shut.explorer, ExploreEventKind::gap_shut), 1U);
+  EXPECT_EQ(shut.explorer->shut_gaps().refused_driven(), 0U);
+  // Off, the view from afar opens it.
+  const AfterAViewFromAfar off = door_after_a_view_from_afar(0.0);
+  EXPECT_TRUE(off.door_open);
+  EXPECT_EQ(off.explorer->shut_gaps().gaps_shut(), 0U);
 }
 
 // The same door closed behind it on the way back: it follows its trail back to the start.
