@@ -274,7 +274,7 @@ bool Explorer::clear_contacts(const ExploreInput& input) {
 // (shut_gaps.hpp): the gap stays shut for planning, so no goal behind it is chosen next.
 void Explorer::shut_gap(const ExploreInput& input) {
   if (!gaps_.shut(input.time_s)) return;
-  note(ExploreEventKind::gap_shut, input);
+  note(ExploreEventKind::gap_shut, input, gaps_.last_shut_at(), static_cast<double>(gaps_.last_shut_cells()));
   rebuild_map(input);
 }
 

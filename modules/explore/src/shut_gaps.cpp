@@ -76,6 +76,7 @@ bool ShutGaps::shut(double time_s) {
       ++dropped_full_;
       continue;
     }
+    if (shut_now == 0) last_shut_at_ = point;
     ++shut_now;
   }
   pending_.clear();
@@ -85,6 +86,7 @@ bool ShutGaps::shut(double time_s) {
   }
   ++gaps_shut_;
   cells_shut_ += shut_now;
+  last_shut_cells_ = shut_now;
   return true;
 }
 

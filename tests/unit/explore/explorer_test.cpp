@@ -751,6 +751,8 @@ TEST(Explorer, AGoalFailedAtADoorANearViewShutKeepsTheDoorShutForPlanning) {
   EXPECT_FALSE(shut.door_open);
   EXPECT_EQ(shut.explorer->shut_gaps().gaps_shut(), 1U);
   EXPECT_EQ(journaled(*shut.explorer, ExploreEventKind::gap_shut), 1U);
+  EXPECT_LT(shut.explorer->shut_gaps().last_shut_at().x(), 3.2);  // before the door or in it
+  EXPECT_GT(shut.explorer->shut_gaps().last_shut_at().x(), 2.6);
   EXPECT_EQ(shut.explorer->shut_gaps().refused_driven(), 0U);
   // Off, the view from afar opens it.
   const AfterAViewFromAfar off = door_after_a_view_from_afar(0.0);

@@ -48,6 +48,9 @@ class ShutGaps {
   // Forgets every shut gap; returns how many cells it opened.
   std::size_t lift();
 
+  // The first cell the last shut() shut (map frame), and how many it shut.
+  const Eigen::Vector2d& last_shut_at() const { return last_shut_at_; }
+  std::size_t last_shut_cells() const { return last_shut_cells_; }
   std::size_t held() const { return cells_held_.size(); }
   std::uint64_t gaps_shut() const { return gaps_shut_; }
   std::uint64_t cells_shut() const { return cells_shut_; }
@@ -73,6 +76,8 @@ class ShutGaps {
   core::FixedVector<Eigen::Vector2d> pending_;
   bool pending_far_ = false;
   core::FixedVector<ShutCell> cells_held_;
+  Eigen::Vector2d last_shut_at_ = Eigen::Vector2d::Zero();
+  std::size_t last_shut_cells_ = 0;
   std::unique_ptr<std::uint8_t[]> stamped_;
   std::uint64_t gaps_shut_ = 0;
   std::uint64_t cells_shut_ = 0;
