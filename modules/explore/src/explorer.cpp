@@ -356,7 +356,8 @@ void Explorer::check_plan(const ExploreInput& input) {
   }
   for (std::size_t k = follower_.progress() + 1; k < plan_.cells.size(); ++k) {
     if (!map_.passable(plan_.cells[k].x(), plan_.cells[k].y())) {
-      if (blocked_by_passers_by(input, plan_.cells[k]) && may_wait_for_walkers(input)) {
+      const bool by_passers_by = blocked_by_passers_by(input, plan_.cells[k]);
+      if (by_passers_by && may_wait_for_walkers(input)) {
         ++counters_.plans_kept_for_walkers;
         hold_for_walker(input, plan_.cells[k]);
         return;
@@ -371,7 +372,8 @@ void Explorer::check_plan(const ExploreInput& input) {
         goal_failed(input);
         return;
       }
-      gaps_.blocked(map_, plan_, k, position_of(input.pose));
+      // A person's traces shut nothing for good: they pass.
+      if (!by_passers_by) gaps_.blocked(map_, plan_, k, position_of(input.pose));
       if (replan(input)) {
         gaps_.forget_blocked();
         return;

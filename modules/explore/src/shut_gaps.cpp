@@ -17,6 +17,7 @@ ShutGaps::ShutGaps(const ExploreParams& params, int max_width, int max_height)
     : hold_s_(params.explore.shut_gap_hold_s),
       range_m_(params.explore.shut_gap_range_m),
       robot_radius_m_(params.robot_radius_m),
+      lethal_margin_cells_(params.explore.lethal_margin_cells),
       capacity_cells_(static_cast<std::size_t>(std::max(max_width, 0)) * static_cast<std::size_t>(std::max(max_height, 0))),
       driven_(new std::uint8_t[capacity_cells_]()),
       pending_(kGapCells),
@@ -58,8 +59,27 @@ void ShutGaps::blocked(const NavigationMap& map, const Plan& plan, std::size_t b
   for (std::size_t k = blocked; k < plan.cells.size() && pending_.size() < kGapCells; ++k) {
     const Eigen::Vector2i& cell = plan.cells[k];
     if (map.passable(cell.x(), cell.y())) break;
-    pending_.push_back(map.grid().center(cell.x(), cell.y()));
+    if (in_a_gap(map, plan, k)) pending_.push_back(map.grid().center(cell.x(), cell.y()));
   }
+}
+
+// A cell of the plan between obstacles on either side of the way through it that are no
+// farther apart across it than a door: the disc's lethal width and a cell either side (1.0 m
+// between cell centres on the default robot and grid; a 0.9 m door's jambs are 0.9-1.0 m
+// apart). A cell impassable for one obstacle alone (beside a wall, a person's trace in a
+// corridor) lies in no such gap, and shutting it could cut a corridor in two.
+bool ShutGaps::in_a_gap(const NavigationMap& map, const Plan& plan, std::size_t k) const {
+  const std::size_t before = k > 0 ? k - 1 : k;
+  const std::size_t after = std::min(k + 1, plan.waypoints.size() - 1);
+  const Eigen::Vector2d along = plan.waypoints[after] - plan.waypoints[before];
+  if (along.squaredNorm() == 0.0) return false;
+  const Eigen::Vector2d across = Eigen::Vector2d(-along.y(), along.x()).normalized();
+  const double resolution_m = map.grid().resolution_m;
+  const double widest_m = 2.0 * (robot_radius_m_ + (lethal_margin_cells_ + 1.0) * resolution_m);
+  Eigen::Vector2d left;
+  Eigen::Vector2d right;
+  return map.nearest_obstacles_aside(plan.waypoints[k], across, widest_m, left, right) &&
+         across.dot(left - right) <= widest_m + 1e-9;
 }
 
 bool ShutGaps::shut(double time_s) {

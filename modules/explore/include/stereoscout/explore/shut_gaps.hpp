@@ -65,10 +65,12 @@ class ShutGaps {
     double until_s = 0.0;
   };
   bool driven(const Eigen::Vector2d& point) const;
+  bool in_a_gap(const NavigationMap& map, const Plan& plan, std::size_t k) const;
 
   double hold_s_;
   double range_m_;
   double robot_radius_m_;
+  double lethal_margin_cells_;
   std::size_t capacity_cells_;
   // The driven cells, on the grid they were recorded on.
   std::unique_ptr<std::uint8_t[]> driven_;
