@@ -55,7 +55,7 @@ bool ShutGaps::driven(const Eigen::Vector2d& point) const {
 void ShutGaps::blocked(const NavigationMap& map, const Plan& plan, std::size_t blocked, const Eigen::Vector2d& robot) {
   pending_.clear();
   if (!enabled() || blocked >= plan.cells.size()) return;
-  pending_far_ = (plan.waypoints[blocked] - robot).norm() > range_m_;
+  pending_far_ = range_m_ > 0.0 && (plan.waypoints[blocked] - robot).norm() > range_m_;
   for (std::size_t k = blocked; k < plan.cells.size() && pending_.size() < kGapCells; ++k) {
     const Eigen::Vector2i& cell = plan.cells[k];
     if (map.passable(cell.x(), cell.y())) break;

@@ -101,13 +101,18 @@ TEST(ShutGaps, ADoorTheRobotDroveThroughIsNeverShut) {
   EXPECT_EQ(scene.gaps.held(), 0U);
 }
 
-TEST(ShutGaps, AGapBlockedFarFromTheRobotIsNotShut) {
+TEST(ShutGaps, AGapBlockedFartherThanTheRangeIsNotShut) {
   ExploreParams params = shut_gap_params();
   params.explore.shut_gap_range_m = 0.5;  // the door is 0.75 m from the robot's centre
   DoorScene scene(params);
   scene.gaps.blocked(scene.map, scene.plan, scene.plan_then_shut_door(), scene.robot);
   EXPECT_FALSE(scene.gaps.shut(10.0));
   EXPECT_EQ(scene.gaps.refused_far(), 1U);
+  // 0: at any distance.
+  params.explore.shut_gap_range_m = 0.0;
+  DoorScene any_distance(params);
+  any_distance.gaps.blocked(any_distance.map, any_distance.plan, any_distance.plan_then_shut_door(), any_distance.robot);
+  EXPECT_TRUE(any_distance.gaps.shut(10.0));
 }
 
 TEST(ShutGaps, OffByDefaultAndNothingAllocates) {
