@@ -270,7 +270,7 @@ bool Explorer::clear_contacts(const ExploreInput& input) {
 // places the frontier behind it is seen from: "nothing left" would then be concluded on goals
 // only put aside. So their holds are lifted first, each goal's at most blacklist_releases times,
 // and a room the robot cannot enter still lets the run end. True when any was held.
-// A goal failed at a gap that a view from near shut and the robot never drove through
+// A goal failed at a gap that a view shut and the robot never drove through
 // (shut_gaps.hpp): the gap stays shut for planning, so no goal behind it is chosen next.
 void Explorer::shut_gap(const ExploreInput& input) {
   if (!gaps_.shut(input.time_s)) return;

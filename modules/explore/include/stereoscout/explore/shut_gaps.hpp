@@ -1,20 +1,23 @@
 #pragma once
-// Gaps a near view shut, where the robot has never been. Seen from afar, a door narrowed by
-// what hangs in it (office room N2: a poster in its west half, 1.1-1.9 m high, leaves 0.45 m
-// for the 1.2 m robot) or a gap in a blank wall looks open, and the room beyond is worth the
-// most on offer. The robot drives there, holds the obstacle from near, and the goal fails; the
-// next view from afar (or the next particle lineage's grid) opens the gap again, and the next
-// goal behind it sends the robot back: 440-630 s of each of office seeds 11, 13 and 14's hours.
-// A goal blacklisting cannot stop that, since it holds one goal's place, not the way in.
+// Gaps a view shut, where the robot has never been. From some views a door narrowed by what
+// hangs in it (office room N2: a poster in its west half, 1.1-1.9 m high, leaves 0.45 m for
+// the 1.2 m robot) or a gap in a blank partition or corridor wall looks open, and the room
+// beyond is worth the most on offer. The robot drives there, the next view holds the gap shut,
+// and the goal fails; the view after (or the next particle lineage's grid) opens the gap again,
+// and the next goal behind it sends the robot back: 440-630 s of each of office seeds 11, 13
+// and 14's hours went to N2. A goal blacklisting cannot stop that, since it holds one goal's
+// place, not the way in.
 //
-// So when a goal fails because its kept plan was blocked within shut_gap_range_m of the robot
-// and no other way was found, the plan's blocked cells there are shut: marked occupied in the
-// explorer's copy of the grid (like contact cells) for shut_gap_hold_s, which keeps every goal
-// behind the gap unreachable. Only cells the robot's disc has never covered are shut (the
-// driven cells: where its centre has been, all run long, within its radius): a door it drove
-// through fits it, whatever a view from near draws in it now, and the robot is never shut in
-// the room it stands in. Like contacts and blacklistings, shut gaps are lifted before the
-// explorer concludes that nothing is left or that there is no way back.
+// So when a goal fails because its kept plan was blocked and no other way was found, the
+// plan's blocked cells that lie in a gap (between obstacles on either side of the way no
+// farther apart than a door) are shut: marked occupied in the explorer's copy of the grid
+// (like contact cells) for shut_gap_hold_s, which keeps every goal behind the gap unreachable.
+// With shut_gap_range_m, only when the first blocked cell lies that near the robot. Cells the
+// robot's disc has covered are never shut (the driven cells: where its centre has been, all
+// run long, within its radius): a door it drove through fits it, whatever a view draws in it
+// now, and the robot is never shut in the room it stands in. Like contacts and blacklistings,
+// shut gaps are lifted before the explorer concludes that nothing is left or that there is no
+// way back.
 
 #include <cstdint>
 #include <memory>
