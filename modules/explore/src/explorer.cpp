@@ -265,11 +265,6 @@ bool Explorer::clear_contacts(const ExploreInput& input) {
   return true;
 }
 
-// A goal blacklisted for what was in the robot's way at the time (its own door narrowed for a
-// moment) excludes candidates within blacklist_radius_m for blacklist_hold_s, and with them the
-// places the frontier behind it is seen from: "nothing left" would then be concluded on goals
-// only put aside. So their holds are lifted first, each goal's at most blacklist_releases times,
-// and a room the robot cannot enter still lets the run end. True when any was held.
 // A goal failed at a gap that a view shut and the robot never drove through
 // (shut_gaps.hpp): the gap stays shut for planning, so no goal behind it is chosen next.
 void Explorer::shut_gap(const ExploreInput& input) {
@@ -288,6 +283,11 @@ bool Explorer::lift_shut_gaps(const ExploreInput& input) {
   return true;
 }
 
+// A goal blacklisted for what was in the robot's way at the time (its own door narrowed for a
+// moment) excludes candidates within blacklist_radius_m for blacklist_hold_s, and with them the
+// places the frontier behind it is seen from: "nothing left" would then be concluded on goals
+// only put aside. So their holds are lifted first, each goal's at most blacklist_releases times,
+// and a room the robot cannot enter still lets the run end. True when any was held.
 bool Explorer::release_blacklist(const ExploreInput& input) {
   if (memory_.release_held(input.time_s, params_.explore.blacklist_releases) == 0) return false;
   ++counters_.blacklist_releases;

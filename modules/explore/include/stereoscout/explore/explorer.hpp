@@ -234,8 +234,8 @@ class Explorer {
   TraceMemory traces_;
   TrailMemory trail_;
   ExploreJournal journal_;
-  GridView planning_grid_;  // the input grid with the contact and recent obstacle cells occupied (last rebuild): the safety check's
-  bool planning_on_copy_ = false;  // planning_grid_ is a stamped copy (contacts, recent obstacles)
+  GridView planning_grid_;  // the input grid with the contact, shut gap and recent obstacle cells occupied (last rebuild): the safety check's
+  bool planning_on_copy_ = false;  // planning_grid_ is a stamped copy (contacts, shut gaps, recent obstacles)
   bool crossing_traces_ = false;   // the navigation map holds a person's old traces free
   bool following_trail_ = false;   // ... and the robot's own path open
   std::size_t trail_cells_opened_ = 0;  // by the last rebuild
