@@ -38,8 +38,8 @@ class ShutGaps {
   // The robot's centre is at `position` (map frame) on `grid`: the cells within its radius are
   // driven. A grid of another size or origin starts the record afresh.
   void drove(const GridView& grid, const Eigen::Vector2d& position);
-  // The kept plan was blocked at its cell `blocked` on `map`: keeps the run of impassable cells
-  // from there on as the gap that would be shut if no other way is found (shut()).
+  // The kept plan was blocked at its cell `blocked` on `map`: keeps the cells of the run of
+  // impassable ones from there on that lie in a gap, to be shut if no other way is found.
   void blocked(const NavigationMap& map, const Plan& plan, std::size_t blocked, const Eigen::Vector2d& robot);
   // No other way was found: shuts the kept gap's undriven cells. True when any was shut.
   bool shut(double time_s);
