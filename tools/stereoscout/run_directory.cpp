@@ -304,6 +304,7 @@ void write_counters(report::JsonWriter& json, const stack::Stack& stack) {
       .unsigned_integer("shut_gaps_refused_driven", stack.explorer().shut_gaps().refused_driven())
       .unsigned_integer("shut_gaps_refused_far", stack.explorer().shut_gaps().refused_far())
       .unsigned_integer("shut_gap_cells_dropped_full", stack.explorer().shut_gaps().dropped_full())
+      .unsigned_integer("shut_gap_driven_restarts", stack.explorer().shut_gaps().driven_restarts())
       .unsigned_integer("shut_gap_lifts", e.shut_gap_lifts)
       .unsigned_integer("recent_points_kept", stack.explorer().recent_obstacles().kept())
       .unsigned_integer("recent_points_seen_past", stack.explorer().recent_obstacles().seen_past())
