@@ -101,6 +101,13 @@ int run_explore(int argc, char** argv) {
                                      event.in_view_distance_m});
   }
   context.person_contacts = board.simulator().person_contact_count();
+  const host_sim::NearMisses& near_misses = board.simulator().near_misses();
+  context.near_miss_m = near_misses.threshold_m();
+  context.near_misses = near_misses.count();
+  for (std::size_t i = 0; i < near_misses.log_size(); ++i) {
+    const host_sim::NearMisses::Event& event = near_misses.log(i);
+    context.near_miss_log.push_back({event.time_s, event.pose.x, event.pose.y, event.pose.theta, event.clearance_m});
+  }
   context.distance_m = board.simulator().distance_travelled_m();
   context.log_file = record ? "sensors.log" : "";
   context.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

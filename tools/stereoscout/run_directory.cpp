@@ -387,6 +387,18 @@ void optional_number(report::JsonWriter& json, const char* key, double value) {
   }
 }
 
+// An array of rows of numbers (the collision and near-miss logs).
+template <std::size_t N>
+void number_rows(report::JsonWriter& json, const char* key, const std::vector<std::array<double, N>>& rows) {
+  json.begin_array(key);
+  for (const auto& row : rows) {
+    json.begin_array();
+    for (const double value : row) json.number(nullptr, value);
+    json.end_array();
+  }
+  json.end_array();
+}
+
 std::string report_json(const stack::Stack& stack, const core::SystemConfig& config, const RunContext& context,
                         const RunScore& score, const std::map<std::string, std::string>& digests) {
   const occupancy::JustInTimeGridStats& grid = stack.grid().stats();
@@ -407,15 +419,12 @@ std::string report_json(const stack::Stack& stack, const core::SystemConfig& con
         .unsigned_integer("collision_events", context.collision_events)
         .unsigned_integer("collision_events_people", context.person_collision_events)
         .unsigned_integer("person_contacts", context.person_contacts);
-    json.begin_array("collision_log");
-    for (const auto& event : context.collision_log) {
-      json.begin_array();
-      for (const double value : event) json.number(nullptr, value);
-      json.end_array();
-    }
-    json.end_array();
+    number_rows(json, "collision_log", context.collision_log);
+    json.number("near_miss_m", context.near_miss_m).unsigned_integer("near_misses", context.near_misses);
+    number_rows(json, "near_miss_log", context.near_miss_log);
   } else {
     json.null("collisions").null("collision_events").null("collision_events_people").null("person_contacts");
+    json.null("near_miss_m").null("near_misses");
   }
   json.unsigned_integer("updates", stack.counters().updates)
       .unsigned_integer("landmarks", score.landmarks)

@@ -32,6 +32,9 @@ struct RunContext {
   // world's people) or -1 for a static obstacle.
   std::vector<std::array<double, 8>> collision_log;  // docs/report.md, `collision_log`
   std::uint64_t person_contacts = 0;
+  double near_miss_m = 0.0;                    // the simulator's threshold; near misses below
+  std::uint64_t near_misses = 0;
+  std::vector<std::array<double, 5>> near_miss_log;  // time s, true x, y, theta, least clearance m
   double distance_m = 0.0;                     // driven (simulator), 0 if unknown
   double wall_time_s = 0.0;
   std::string log_file;                        // file name inside the run directory, or empty

@@ -28,7 +28,8 @@ Simulator::Simulator(const World& world, const core::RobotConfig& robot, const c
       odometry_queue_(static_cast<std::size_t>(sim.odometry_queue)),
       person_in_contact_(world.people.size(), 0),
       person_last_in_view_s_(world.people.size(), -1.0),
-      person_in_view_distance_m_(world.people.size(), -1.0) {
+      person_in_view_distance_m_(world.people.size(), -1.0),
+      near_misses_(sim.near_miss_m) {
   teleport(world.start);
 }
 
@@ -138,18 +139,27 @@ void Simulator::integrate(double dt_s) {
         ++collision_events_;
         if (hit != kStaticObstacle) ++person_collision_events_;
       }
+      if (hit == kStaticObstacle) near_misses_.touched();
       in_contact_ = true;
       contact_with_ = hit;
       command_ = core::DriveCommand{};
     } else {
       pose_ = next;
       distance_m_ += std::abs(travel);
+      if (travel != 0.0) note_clearance();
       // The contact lasts until the robot has moved clear: sliding along a wall, refused step
       // after step, is one contact.
       in_contact_ = in_contact_ && still_touching(contact_with_);
     }
   }
   count_person_contacts();
+}
+
+void Simulator::note_clearance() {
+  if (near_misses_.threshold_m() <= 0.0) return;
+  const Eigen::Vector2d centre = pose_.translation();
+  const double clearance = (obstacles_.nearest_point(centre) - centre).norm() - robot_.radius_m;
+  near_misses_.moved(time_s(), pose_, clearance);
 }
 
 void Simulator::emit_odometry() {

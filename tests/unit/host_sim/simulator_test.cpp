@@ -206,6 +206,49 @@ TEST(Simulator, DriveIntoAWallIsStoppedAndCounted) {
   EXPECT_EQ(simulator.collision_event_count(), 2U);
 }
 
+TEST(Simulator, ANearMissIsAnApproachThatTouchedNothingAndAContactIsNone) {
+  // The room's south wall is y = 0; the radius 0.35 m; sim.near_miss_m 0.03 m.
+  const World world = load_or_fail(room_yaml("brick"));
+  Simulator simulator(world, core::RobotConfig{}, core::CameraConfig{}, noiseless(), 1);
+  ASSERT_DOUBLE_EQ(simulator.near_misses().threshold_m(), 0.03);
+  // Along the wall 0.02 m clear, then away: one near miss, logged at its least clearance.
+  simulator.teleport(core::Pose2{2.0, 0.37, 0.0});
+  drive(simulator, 0.12, 0.0, 1.0);
+  EXPECT_EQ(simulator.near_misses().count(), 1U);  // under way, untouched
+  EXPECT_EQ(simulator.near_misses().log_size(), 0U);
+  simulator.teleport(core::Pose2{3.0, 1.0, 0.0});
+  drive(simulator, 0.12, 0.0, 1.0);
+  ASSERT_EQ(simulator.near_misses().log_size(), 1U);
+  EXPECT_NEAR(simulator.near_misses().log(0).clearance_m, 0.02, 1e-9);
+  EXPECT_NEAR(simulator.near_misses().log(0).pose.y, 0.37, 1e-9);
+  // 0.04 m clear is no near miss.
+  simulator.teleport(core::Pose2{2.0, 0.39, 0.0});
+  drive(simulator, 0.12, 0.0, 1.0);
+  simulator.teleport(core::Pose2{3.0, 1.0, 0.0});
+  drive(simulator, 0.12, 0.0, 1.0);
+  EXPECT_EQ(simulator.near_misses().count(), 1U);
+  // Into the wall and back out: a contact, not a near miss.
+  simulator.teleport(core::Pose2{5.0, 0.6, -core::kPi / 2.0});
+  drive(simulator, 0.12, 0.0, 3.0);
+  EXPECT_EQ(simulator.collision_event_count(), 1U);
+  drive(simulator, -0.12, 0.0, 3.0);
+  EXPECT_GT(simulator.true_pose().y, 0.6);
+  EXPECT_EQ(simulator.near_misses().count(), 1U);
+  EXPECT_EQ(simulator.near_misses().log_size(), 1U);
+}
+
+TEST(Simulator, NoNearMissesAreCountedWithAThresholdOfNought) {
+  const World world = load_or_fail(room_yaml("brick"));
+  core::SimConfig sim = noiseless();
+  sim.near_miss_m = 0.0;
+  Simulator simulator(world, core::RobotConfig{}, core::CameraConfig{}, sim, 1);
+  simulator.teleport(core::Pose2{2.0, 0.36, 0.0});
+  drive(simulator, 0.12, 0.0, 1.0);
+  simulator.teleport(core::Pose2{3.0, 1.0, 0.0});
+  drive(simulator, 0.12, 0.0, 1.0);
+  EXPECT_EQ(simulator.near_misses().count(), 0U);
+}
+
 TEST(Simulator, APersonWalkingIntoTheRobotIsTheirCollisionNotOurs) {
   // A person walks to and fro along y = 10 through the robot standing at (10, 10), 0.5 m/s.
   const World world =

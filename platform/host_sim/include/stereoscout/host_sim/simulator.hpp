@@ -18,6 +18,9 @@
 // and lasts until they walk on (2 cm clear): the robot's steps meanwhile, after a person who
 // walked through it, are no collision.
 //
+// Near misses (near_misses.hpp): after each step that moves the robot, the true clearance of
+// its disc from the nearest static obstacle.
+//
 // Odometry: at robot.odometry_rate_hz the true motion since the last reading is corrupted by
 // the noise model of the floor under the robot (config sim.tile / sim.carpet) and integrated
 // into the odometry pose.
@@ -33,6 +36,7 @@
 #include "stereoscout/core/messages.hpp"
 #include "stereoscout/core/ring_buffer.hpp"
 #include "stereoscout/host_sim/ground_truth.hpp"
+#include "stereoscout/host_sim/near_misses.hpp"
 #include "stereoscout/host_sim/renderer.hpp"
 #include "stereoscout/host_sim/world.hpp"
 #include "stereoscout/platform/camera.hpp"
@@ -95,6 +99,8 @@ class Simulator {
   std::uint64_t person_contact_count() const { return person_contacts_; }  // a person's, into the robot
   std::uint64_t odometry_dropped() const { return odometry_queue_.overwritten(); }
   double distance_travelled_m() const { return distance_m_; }
+  // Close approaches to static obstacles that touched nothing (sim.near_miss_m).
+  const NearMisses& near_misses() const { return near_misses_; }
   const World& world() const { return world_; }
   const core::CameraConfig& camera_config() const { return camera_; }
 
@@ -115,6 +121,8 @@ class Simulator {
   bool still_touching(int target) const;
   CollisionEvent describe_collision(int hit) const;
   void count_person_contacts();
+  // The disc's clearance from static obstacles, for the near misses.
+  void note_clearance();
   void emit_odometry();
 
   const World& world_;
@@ -146,6 +154,7 @@ class Simulator {
   std::vector<double> person_last_in_view_s_;  // one per person, -1 until first in view
   std::vector<double> person_in_view_distance_m_;
   double distance_m_ = 0.0;
+  NearMisses near_misses_;
 };
 
 // A camera that delivers a new pair every 1 / camera.frame_rate_hz of simulated time,

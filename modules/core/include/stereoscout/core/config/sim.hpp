@@ -25,6 +25,7 @@ struct SimConfig {
   double floor_tolerance_m = 0.02;
   int odometry_queue = 64;
   int max_hits_per_column = 64;
+  double near_miss_m = 0.03;
 };
 
 inline void describe_odometry_noise(ConfigVisitor& v, const char* floor, OdometryNoiseConfig& c) {
@@ -47,6 +48,7 @@ inline void describe(ConfigVisitor& v, SimConfig& c) {
   v.number("floor_tolerance_m", c.floor_tolerance_m, {0.0, 0.5, "m", "Objects entirely below this height (thresholds, cables) do not block the robot and are free in the ground-truth map."});
   v.integer_field("odometry_queue", c.odometry_queue, {1, 100000, "", "Odometry readings the simulator holds until read; when full the oldest is dropped and counted."});
   v.integer_field("max_hits_per_column", c.max_hits_per_column, {4, 1024, "", "Surfaces the renderer keeps per image column (nearest first); more are counted and dropped."});
+  v.number("near_miss_m", c.near_miss_m, {0.0, 0.5, "m", "A near miss (report.json near_misses): the robot's disc comes within this of a static obstacle and moves 2 cm farther clear again without touching it. An evaluation figure, not a model of the robot; 0 counts none."});
   v.end_section();
 }
 
