@@ -1,7 +1,5 @@
 #include "stereoscout/host_sim/near_misses.hpp"
 
-#include <algorithm>
-
 namespace stereoscout::host_sim {
 namespace {
 // An approach ends this far above the threshold, as a contact ends 2 cm clear (simulator.cpp).

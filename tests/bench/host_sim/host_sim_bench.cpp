@@ -78,10 +78,13 @@ BENCHMARK(BM_RenderStereoPairClutter)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_RenderStereoPairOfficeTextureVariants8)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TextureBankOffice)->Arg(1)->Arg(8)->Unit(benchmark::kMillisecond);
 
-// One second of simulated driving (100 kinematics steps with collision checks, 5-6 odometry readings).
+// One second of simulated driving (100 kinematics steps with collision checks, 5-6 odometry
+// readings); with the argument 1 the near misses are counted too (a clearance query a step).
 void BM_SimulateOneSecondLab(benchmark::State& state) {
   const World& w = world("lab");
-  Simulator simulator(w, core::RobotConfig{}, core::CameraConfig{}, core::SimConfig{}, 1);
+  core::SimConfig sim;
+  sim.near_miss_m = state.range(0) != 0 ? sim.near_miss_m : 0.0;
+  Simulator simulator(w, core::RobotConfig{}, core::CameraConfig{}, sim, 1);
   OdometrySample sample;
   for (auto _ : state) {
     simulator.command({0.1, 0.05});
@@ -91,7 +94,7 @@ void BM_SimulateOneSecondLab(benchmark::State& state) {
     if (simulator.current_command().linear_mps == 0.0) simulator.teleport(w.start);
   }
 }
-BENCHMARK(BM_SimulateOneSecondLab)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_SimulateOneSecondLab)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 void BM_RasterizeLab(benchmark::State& state) {
   const World& w = world("lab");
