@@ -129,7 +129,8 @@ TEST_F(StackRun, SameSeedSameOutputsNoHeapInLoopAndEveryReportKey) {
   EXPECT_EQ(report_number(a, "heap_allocations_in_loop"), 0.0) << a;
   for (const char* key : {"coverage", "ate_rmse_m", "odometry_ate_rmse_m", "map_agreement", "collisions",
                           "collision_events_people", "updates", "landmarks", "grids_held_mean", "grids_held_max",
-                          "resamplings", "sim_time_s", "wall_time_s", "reobservation_consistency"}) {
+                          "resamplings", "sim_time_s", "wall_time_s", "reobservation_consistency", "near_miss_m",
+                          "near_misses"}) {
     EXPECT_GE(report_number(a, key), 0.0) << key << " missing or null\n" << a;
   }
   // The budget check: generous budgets pass, 1 us budgets fail (no timing is asserted).
