@@ -2,8 +2,8 @@
 // Near misses: the robot's disc comes within sim.near_miss_m of a static obstacle and moves
 // clear again without touching it. Contacts are all-or-nothing and rare (a few an hour), so a
 // change that moves the robot nearer to or farther from door jambs shows in them only over
-// many runs; approaches within 3 cm of a jamb came about three times as often as jamb contacts
-// in the office (docs/architecture.md, "Near misses").
+// many runs; the near misses add events of the same kind, about as many again in the office
+// (docs/architecture.md, "Near misses").
 // An approach begins when the clearance falls below the threshold and ends when it is 2 cm
 // (the contact's own hysteresis) above it again; it is a near miss if the robot touched
 // nothing static in between. Fixed storage: the first kLogSize near misses are logged.
