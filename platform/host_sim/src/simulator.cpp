@@ -9,7 +9,8 @@
 namespace stereoscout::host_sim {
 namespace {
 
-// A contact ends when the robot's disc is this far clear of the obstacle or person.
+// A contact ends when the robot's disc is this far clear of the obstacle or person; so does a
+// near miss's approach.
 constexpr double kContactClearance_m = 0.02;
 
 std::int64_t seconds_to_ns(double seconds) { return static_cast<std::int64_t>(std::llround(seconds * 1e9)); }
@@ -29,7 +30,7 @@ Simulator::Simulator(const World& world, const core::RobotConfig& robot, const c
       person_in_contact_(world.people.size(), 0),
       person_last_in_view_s_(world.people.size(), -1.0),
       person_in_view_distance_m_(world.people.size(), -1.0),
-      near_misses_(sim.near_miss_m) {
+      near_misses_(sim.near_miss_m, kContactClearance_m) {
   teleport(world.start);
 }
 

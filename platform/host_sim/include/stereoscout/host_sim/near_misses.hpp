@@ -4,9 +4,10 @@
 // change that moves the robot nearer to or farther from door jambs shows in them only over
 // many runs; the near misses add events of the same kind, about as many again in the office
 // (docs/architecture.md, "Near misses").
-// An approach begins when the clearance falls below the threshold and ends when it is 2 cm
-// (the contact's own hysteresis) above it again; it is a near miss if the robot touched
-// nothing static in between. Fixed storage: the first kLogSize near misses are logged.
+// An approach begins when the clearance falls below the threshold and ends when it is
+// `hysteresis_m` above it again (the simulator gives its contacts' own, 2 cm); it is a near
+// miss if the robot touched nothing static in between. Fixed storage: the first kLogSize near
+// misses are logged.
 
 #include <algorithm>
 #include <array>
@@ -27,7 +28,7 @@ class NearMisses {
   static constexpr std::size_t kLogSize = 64;
 
   // threshold_m <= 0 counts none.
-  explicit NearMisses(double threshold_m) : threshold_m_(threshold_m) {}
+  NearMisses(double threshold_m, double hysteresis_m) : threshold_m_(threshold_m), hysteresis_m_(hysteresis_m) {}
 
   // The robot moved to `pose`, its disc `clearance_m` from the nearest static obstacle.
   void moved(double time_s, const core::Pose2& pose, double clearance_m);
@@ -42,6 +43,7 @@ class NearMisses {
 
  private:
   double threshold_m_;
+  double hysteresis_m_;
   bool open_ = false;      // an approach is under way
   bool touched_ = false;   // and it ran into something
   Event closest_;          // its closest point so far
