@@ -35,6 +35,7 @@ ParticleFilter::ParticleFilter(const core::FilterConfig& config, const core::Cam
       camera_mount_(camera_mount),
       stereo_(stereo != nullptr ? *stereo : StereoModel{}),
       linearise_at_estimate_(config.linearise_at_estimate && stereo != nullptr),
+      fuse_at_measurement_(linearise_at_estimate_ && !config.linearise_fusion),
       seed_(seed),
       motion_noise_(motion_noise_from_config(config)),
       landmarks_(to_size(config.landmark_node_capacity), to_size(config.landmark_estimate_capacity)),
@@ -298,7 +299,8 @@ double ParticleFilter::observe(Particle& particle, const PlanarTransform& map_fr
     return log_likelihood;
   }
   if (in_gate) {
-    ekf_update(landmarks_.mutable_estimate(*own, best), best_innovation);
+    LandmarkEstimate& fused = landmarks_.mutable_estimate(*own, best);
+    ekf_update(fused, fuse_at_measurement_ ? innovation(fused, seen) : best_innovation);
     ++counters_.estimates_updated;
   } else {
     // Spatially distinct from every estimate of this identity: a new landmark (paper Fig. 1).

@@ -176,6 +176,7 @@ class ParticleFilter {
   core::CameraMount camera_mount_;
   StereoModel stereo_;
   bool linearise_at_estimate_ = false;  // filter.linearise_at_estimate with a StereoModel
+  bool fuse_at_measurement_ = false;    // linearised weights, the paper's fusion (filter.linearise_fusion off)
   Eigen::Isometry3d robot_from_sensor_ = Eigen::Isometry3d::Identity();  // of this update
   std::uint64_t seed_;
   MotionNoise motion_noise_;
