@@ -312,7 +312,6 @@ void write_counters(report::JsonWriter& json, const stack::Stack& stack) {
       .unsigned_integer("recent_cells_stamped", stack.explorer().recent_obstacles().cells_stamped())
       .unsigned_integer("recent_blank_points_unconfirmed", stack.explorer().recent_obstacles().blank_unconfirmed())
       .unsigned_integer("trace_crossings", e.trace_crossings)
-      .unsigned_integer("hold_crossings", e.hold_crossings)
       .unsigned_integer("trail_follows", e.trail_follows)
       .unsigned_integer("traces_confirmed", e.traces_confirmed)
       .unsigned_integer("back_offs_to_see", e.back_offs_to_see)

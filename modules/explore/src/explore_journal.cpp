@@ -23,7 +23,6 @@ const char* to_string(ExploreEventKind kind) {
     case ExploreEventKind::contacts_cleared: return "contacts_cleared";
     case ExploreEventKind::blacklist_released: return "blacklist_released";
     case ExploreEventKind::crossing_traces: return "crossing_traces";
-    case ExploreEventKind::crossing_holds: return "crossing_holds";
     case ExploreEventKind::following_trail: return "following_trail";
     case ExploreEventKind::plan_kept: return "plan_kept";
     case ExploreEventKind::walker_hold: return "walker_hold";

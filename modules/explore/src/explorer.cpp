@@ -110,9 +110,6 @@ Explorer::Explorer(const ExploreParams& params)
       recent_(params.explore, params.max_width, params.max_height),
       traces_(params.explore, params.max_width, params.max_height),
       trail_(params.explore),
-      held_open_(params.explore.cross_disputed_holds ? static_cast<std::size_t>(params.max_width) *
-                                                          static_cast<std::size_t>(params.max_height)
-                                                    : 0U),
       journal_(static_cast<std::size_t>(params.explore.event_memory)),
       planner_(params),
       follower_(params),
@@ -248,7 +245,6 @@ void Explorer::rebuild_map(const ExploreInput& input) {
   // While crossing traces, plans cross a person's old traces; the safety check (on
   // planning_grid_) never does.
   GridView navigation_grid = crossing_traces_ ? traces_.forget_traces(planning_grid_, input.time_s) : planning_grid_;
-  if (crossing_holds_) navigation_grid = open_disputed_holds(navigation_grid, input.grid);
   if (params_.explore.remembered_obstacle_cost > 0.0) navigation_grid.seen_standing = traces_.standing_cells();
   map_.rebuild(navigation_grid, position_of(input.pose), extra);
   trail_cells_opened_ = following_trail_ ? map_.open_trail(trail_) : 0;
@@ -311,33 +307,6 @@ bool Explorer::start_crossing_traces(const ExploreInput& input) {
                            ExploreEventKind::crossing_traces, counters_.trace_crossings, input);
 }
 
-// A copy of a wall drawn from near under a pose a little off is held by the grid's near-hit
-// hold like the wall itself, and where no view reaches it (behind the true wall, seen from
-// inside the room) it shuts the robot in for good. So neither "no plan" nor "nothing left" is
-// concluded on cells held only against a far miss that passed them by (GridView::disputed):
-// the map is rebuilt with them free, and the plans on it cross them until the goal is reached
-// or fails. The safety check (on planning_grid_) still stops the robot before such a cell,
-// and the look that follows lowers it from near if nothing is there. True when there were any.
-bool Explorer::start_crossing_holds(const ExploreInput& input) {
-  if (crossing_holds_ || held_open_.empty() || input.grid.disputed == nullptr) return false;
-  return start_last_resort(crossing_holds_, [this] { return holds_opened_ > 0; },
-                           ExploreEventKind::crossing_holds, counters_.hold_crossings, input);
-}
-
-// `grid` with the cells that `source` holds only by a disputed hold free (into held_open_).
-GridView Explorer::open_disputed_holds(const GridView& grid, const GridView& source) {
-  holds_opened_ = 0;
-  const std::size_t count = static_cast<std::size_t>(grid.width) * static_cast<std::size_t>(grid.height);
-  if (source.width != grid.width || source.height != grid.height || count > held_open_.size()) return grid;
-  GridEdit opened(grid, held_open_.data());
-  for (std::size_t i = 0; i < count; ++i) {
-    if (!source.is_disputed(i) || grid.cells[i] != static_cast<std::uint8_t>(CellState::occupied)) continue;
-    opened.set(i, CellState::free);
-    ++holds_opened_;
-  }
-  return opened.result();
-}
-
 // The passage the robot came in by can close behind it: a cell smeared at its edge narrows it
 // below the lethal width, and the robot, boxed in, would conclude "explored" and then "no way
 // back". It drove through, so the floor is there: before concluding, plans may follow its
@@ -367,10 +336,9 @@ bool Explorer::start_last_resort(bool& active, Changed&& changed, ExploreEventKi
 
 // Crossing traces and following the trail end with the goal they were for.
 void Explorer::stop_last_resorts(const ExploreInput& input) {
-  if (!crossing_traces_ && !following_trail_ && !crossing_holds_) return;
+  if (!crossing_traces_ && !following_trail_) return;
   crossing_traces_ = false;
   following_trail_ = false;
-  crossing_holds_ = false;
   rebuild_map(input);
 }
 
@@ -426,10 +394,7 @@ void Explorer::check_plan(const ExploreInput& input) {
 // taken only when it is clearly cheaper, so that two near-equal ways do not alternate.
 bool Explorer::switch_to_cheaper_plan(const ExploreInput& input) {
   const double saving = params_.explore.plan_switch_saving_m;
-  if (saving <= 0.0 || plan_.cells.size() < 2 || crossing_traces_ || following_trail_ || crossing_holds_ ||
-      !narrow_ahead()) {
-    return false;
-  }
+  if (saving <= 0.0 || plan_.cells.size() < 2 || crossing_traces_ || following_trail_ || !narrow_ahead()) return false;
   const double kept = PathPlanner::remaining_cost(map_, plan_, follower_.progress());
   if (planner_.plan(map_, cell_of(input.pose), plan_.cells.back(), fresh_plan_) != PlanResult::found ||
       fresh_plan_.cost > kept - saving) {
@@ -536,7 +501,6 @@ bool Explorer::replan(const ExploreInput& input) {
   if (plan_to_goal(input) || (returning && clear_contacts(input) && plan_to_goal(input)) ||
       (returning && lift_shut_gaps(input) && plan_to_goal(input)) ||
       (start_crossing_traces(input) && plan_to_goal(input)) ||
-      (start_crossing_holds(input) && plan_to_goal(input)) ||
       (returning && start_following_trail(input) && plan_to_goal(input))) {
     fresh_look_ = false;  // the robot drives on: the next failure deserves a look of its own
     note_plan_length(input);
@@ -612,7 +576,7 @@ void Explorer::choose_goal(const ExploreInput& input) {
         return;
       }
       if (clear_contacts(input) || lift_shut_gaps(input) || release_blacklist(input) || start_crossing_traces(input) ||
-          start_crossing_holds(input) || start_following_trail(input)) {
+          start_following_trail(input)) {
         map_.compute_reachable(cell_of(input.pose));
         continue;
       }
@@ -722,7 +686,7 @@ void Explorer::finish_look(const ExploreInput& input) {
   const double seen_from_m = params_.explore.trace_confirm_seen_floor ? params_.unseen_floor_radius_m() : 0.0;
   counters_.traces_confirmed += traces_.confirm_near(input.grid, position_of(input.pose), seen_from_m, input.time_s);
   if (!return_after_look_ && !resume_after_look_) {
-    if (crossing_traces_ || crossing_holds_) rebuild_map(input);
+    if (crossing_traces_) rebuild_map(input);
     state_ = ExploreState::choose_goal;
     return;
   }

@@ -65,17 +65,17 @@ CellState CellThresholds::classify(float log_odds) const {
 }
 
 void classify_cells(const OccupancyGrid& grid, const CellThresholds& thresholds, CellState* cells,
-                    std::uint8_t* in_view, std::uint8_t* looked_over, std::uint8_t* disputed) {
+                    std::uint8_t* in_view, std::uint8_t* looked_over) {
   const float occupied_above = logit(thresholds.occupied);
   const float free_below = logit(thresholds.free);
   const float* log_odds = grid.data();
   const std::size_t count = grid.geometry().cell_count();
   for (std::size_t i = 0; i < count; ++i) cells[i] = classify_log_odds(log_odds[i], occupied_above, free_below);
-  grid.copy_marks(in_view, looked_over, disputed);
+  grid.copy_marks(in_view, looked_over);
 }
 
 // Eight cells at a time: each byte of a word shifted down by its flag's bit and masked to 0 or 1.
-void OccupancyGrid::copy_marks(std::uint8_t* in_view, std::uint8_t* looked_over, std::uint8_t* disputed) const {
+void OccupancyGrid::copy_marks(std::uint8_t* in_view, std::uint8_t* looked_over) const {
   const std::size_t count = geometry_.cell_count();
   const std::uint8_t* flags = cell_flags_.get();
   auto copy_flag = [&](std::uint8_t* out, int bit) {
@@ -92,18 +92,6 @@ void OccupancyGrid::copy_marks(std::uint8_t* in_view, std::uint8_t* looked_over,
   };
   if (in_view != nullptr) copy_flag(in_view, kInViewBit);
   if (looked_over != nullptr) copy_flag(looked_over, kLookedOverBit);
-  if (disputed != nullptr) {
-    for (std::size_t i = 0; i < count; ++i) {
-      disputed[i] = cells_[i] > 0.0F && (flags[i] & (kHeldByNearHit | kHoldRefusedMiss)) ==
-                                            (kHeldByNearHit | kHoldRefusedMiss);
-    }
-  }
-}
-
-bool OccupancyGrid::disputed(int cell_x, int cell_y) const {
-  const std::size_t i = index(cell_x, cell_y);
-  const std::uint8_t both = kHeldByNearHit | kHoldRefusedMiss;
-  return cells_[i] > 0.0F && (cell_flags_[i] & both) == both;
 }
 
 OccupancyGrid::OccupancyGrid(const GridGeometry& geometry, const LogOddsModel& model)
@@ -198,10 +186,8 @@ void OccupancyGrid::hit(int cell_x, int cell_y, bool at_camera_height, float log
   if (at_camera_height) {
     flags = static_cast<std::uint8_t>(marks | kLastHitAtCameraHeight);
   } else {
-    const bool was_held = (flags & kHeldByNearHit) != 0U;
-    const bool held = was_held || (holds && (flags & kWasFree) == 0U);
-    const std::uint8_t refused = was_held ? (flags & kHoldRefusedMiss) : 0U;
-    flags = static_cast<std::uint8_t>(marks | refused | (held ? kHeldByNearHit : 0U));
+    const bool held = (flags & kHeldByNearHit) != 0U || (holds && (flags & kWasFree) == 0U);
+    flags = static_cast<std::uint8_t>(marks | (held ? kHeldByNearHit : 0U));
   }
 }
 
@@ -289,11 +275,6 @@ bool OccupancyGrid::held_by_near_hit(int cell_x, int cell_y) const {
   return cells_[i] > 0.0F && (cell_flags_[i] & kHeldByNearHit) != 0U;
 }
 
-void OccupancyGrid::refuse_miss(int cell_x, int cell_y) {
-  std::uint8_t& flags = cell_flags_[index(cell_x, cell_y)];
-  flags = static_cast<std::uint8_t>(flags | kHoldRefusedMiss);
-}
-
 void OccupancyGrid::miss(int cell_x, int cell_y) {
   if (!geometry_.contains(cell_x, cell_y) || marked_hit_this_scan(cell_x, cell_y)) return;
   const std::size_t i = index(cell_x, cell_y);
@@ -302,9 +283,7 @@ void OccupancyGrid::miss(int cell_x, int cell_y) {
     if (cells_[i] > 0.0F && (cell_flags_[i] & kLastHitAtCameraHeight) == 0U) miss_stamps_[i] = scan_number_;
   }
   add(cell_x, cell_y, model_.miss);
-  if (cells_[i] <= 0.0F) {
-    cell_flags_[i] = static_cast<std::uint8_t>(cell_flags_[i] & ~(kHeldByNearHit | kHoldRefusedMiss));
-  }
+  if (cells_[i] <= 0.0F) cell_flags_[i] = static_cast<std::uint8_t>(cell_flags_[i] & ~kHeldByNearHit);
 }
 
 void OccupancyGrid::near_miss(int cell_x, int cell_y) {
@@ -346,10 +325,7 @@ void OccupancyGrid::cast_ray(double start_x, double start_y, double end_x, doubl
     }
     const double at = along(x, y);
     const bool near = at <= held_beyond;
-    if (!near && at >= held_from && held_by_near_hit(x, y)) {
-      refuse_miss(x, y);
-      return;
-    }
+    if (!near && at >= held_from && held_by_near_hit(x, y)) return;
     if (at > firm) {
       miss_unless_occupied(x, y);
     } else if (near && std::isfinite(held_beyond)) {

@@ -1711,40 +1711,5 @@ TEST(Explorer, StepDoesNotAllocate) {
   EXPECT_EQ(scope.allocations(), 0U);
 }
 
-// A copy of a wall, drawn from near under a pose a little off and held by the grid's near-hit
-// hold, lies across the only door, and no view from the room reaches it. Held cells alone are
-// obstacles like any: nothing is left, and the run ends. Cells that a far miss disputed are
-// crossed by plans as a last resort (cross_disputed_holds), but not by the safety check: the
-// robot stops before them.
-TEST(Explorer, DisputedHoldsAcrossTheOnlyDoorAreCrossedByPlansNotByTheSafetyCheck) {
-  for (const bool marked : {false, true}) {
-    DoorScene scene;
-    scene.grid.fill(30, 26, 31, 35, CellState::occupied);  // the copy, across the 0.9 m door
-    std::vector<std::uint8_t> disputed(100U * 60U, 0);
-    for (int y = 26; y < 35 && marked; ++y) disputed[static_cast<std::size_t>(y) * 100U + 30U] = 1;
-    ExploreParams params = no_look_params(100, 60);
-    params.explore.cross_disputed_holds = true;
-    params.robot_radius_m = 0.33;
-    Explorer explorer(params);
-    GridView grid = scene.grid.view();
-    grid.disputed = disputed.data();
-    const ExploreOutput first = explorer.step(input_at(grid, 1.5, 3.05, 0.0, 0.0, true));
-    if (!marked) {
-      EXPECT_EQ(first.state, ExploreState::finished);
-      EXPECT_EQ(explorer.counters().hold_crossings, 0U);
-      continue;
-    }
-    ASSERT_EQ(first.state, ExploreState::drive);
-    EXPECT_EQ(explorer.counters().hold_crossings, 1U);
-    EXPECT_EQ(journaled(explorer, ExploreEventKind::crossing_holds), 1U);
-    EXPECT_TRUE(plan_leads_past_the_door(explorer));
-    double time_s = 0.0;
-    const double stopped_x = drive_until_stopped(explorer, grid, 1.5, time_s);
-    EXPECT_LT(stopped_x, 3.0 - 0.33);
-    EXPECT_GT(stopped_x, 2.0);
-    EXPECT_EQ(explorer.counters().safety_stops, 1U);
-  }
-}
-
 }  // namespace
 }  // namespace stereoscout::explore

@@ -187,34 +187,6 @@ TEST(OccupancyGrid, AFarMissThatRunsOnBeyondAHeldCellLowersIt) {
   }
 }
 
-// A held cell is disputed once a far miss passes it by (what the hold kept it from lowering),
-// and stays so while it is held; a cell held with no far miss against it is not, and neither
-// is one a near miss lowered. classify_cells hands the marks on.
-TEST(OccupancyGrid, AHeldCellIsDisputedOnceAFarMissPassesItBy) {
-  LogOddsModel model;
-  model.near_hit_hold_range_m = 0.6F;
-  model.near_hit_hold_end_m = 0.3F;
-  const core::Pose2 near_pose{0.05, 0.05, 0.0};
-  const core::Pose2 far_pose{-0.45, 0.05, 0.0};
-  OccupancyGrid grid(small_geometry(), model);
-  grid.insert(one_column(0.5F, 0.0F, Kind::obstacle), near_pose);  // cell 15, held
-  EXPECT_FALSE(grid.disputed(15, 10));
-  grid.insert(one_column(1.3F, 0.0F, Kind::free), far_pose);  // passes it by
-  EXPECT_FLOAT_EQ(grid.log_odds(15, 10), 0.85F);
-  EXPECT_TRUE(grid.disputed(15, 10));
-  grid.insert(one_column(0.5F, 0.0F, Kind::obstacle), near_pose);  // a near hit again: still held
-  EXPECT_TRUE(grid.disputed(15, 10));
-  std::vector<CellState> cells(small_geometry().cell_count());
-  std::vector<std::uint8_t> disputed(cells.size(), 7);
-  classify_cells(grid, CellThresholds{}, cells.data(), nullptr, nullptr, disputed.data());
-  EXPECT_EQ(disputed[10 * static_cast<std::size_t>(small_geometry().width_cells) + 15], 1);
-  EXPECT_EQ(disputed[10 * static_cast<std::size_t>(small_geometry().width_cells) + 14], 0);
-  // Near misses lower it to log-odds 0 and below: the hold, and the dispute, end.
-  for (int view = 0; view < 5; ++view) grid.insert(one_column(0.9F, 0.0F, Kind::free), near_pose);
-  EXPECT_LE(grid.log_odds(15, 10), 0.0F);
-  EXPECT_FALSE(grid.disputed(15, 10));
-}
-
 // A near hit does not hold a cell that near views saw free: a door's jamb drawn into the
 // doorway by a pose a little off lands on floor seen free before. Floor seen four times out to
 // 0.8 m from A makes cell 14 free; three near hits there then make it occupied, but one far

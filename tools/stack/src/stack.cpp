@@ -48,8 +48,7 @@ std::size_t records_for(double max_time_s, double rate_hz) {
 }  // namespace
 
 explore::GridView navigation_view(const occupancy::GridGeometry& geometry, const occupancy::CellState* cells,
-                                  const std::uint8_t* in_view, const std::uint8_t* looked_over,
-                                  const std::uint8_t* disputed) {
+                                  const std::uint8_t* in_view, const std::uint8_t* looked_over) {
   static_assert(sizeof(occupancy::CellState) == 1);
   static_assert(static_cast<int>(occupancy::CellState::unknown) == static_cast<int>(explore::CellState::unknown) &&
                 static_cast<int>(occupancy::CellState::free) == static_cast<int>(explore::CellState::free) &&
@@ -62,7 +61,6 @@ explore::GridView navigation_view(const occupancy::GridGeometry& geometry, const
   view.cells = reinterpret_cast<const std::uint8_t*>(cells);  // unsigned char may alias any object
   view.in_view = in_view;
   view.looked_over = looked_over;
-  view.disputed = disputed;
   return view;
 }
 
@@ -135,9 +133,6 @@ Stack::Stack(const core::SystemConfig& config, const StackOptions& options, cons
                 occupancy::CellState::unknown);
   in_view_.assign(cells_.size(), 0);
   if (config.grid.looked_over_range_m > 0.0) looked_over_.assign(cells_.size(), 0);
-  if (config.grid.near_hit_hold_range_m > 0.0 && config.explore.cross_disputed_holds) {
-    disputed_.assign(cells_.size(), 0);
-  }
 }
 
 Stack::~Stack() {
@@ -176,8 +171,7 @@ bool Stack::start(double start_timeout_s, std::string& error) {
       geometry, config_.grid.final_map_resolution_m, config_.grid.final_map_tile_m,
       static_cast<std::size_t>(config_.grid.final_map_archive_tiles), occupancy::LogOddsModel::from_config(config_.grid),
       filter_->trajectory());
-  view_ = navigation_view(geometry, cells_.data(), in_view_.data(), looked_over_.empty() ? nullptr : looked_over_.data(),
-                          disputed_.empty() ? nullptr : disputed_.data());
+  view_ = navigation_view(geometry, cells_.data(), in_view_.data(), looked_over_.empty() ? nullptr : looked_over_.data());
   pose_at_update_ = filter_->estimate_pose();
   odometry_at_update_ = first.pose;
   rollup_due_ = true;  // the root gets a grid, so every lineage has one above it
@@ -476,8 +470,7 @@ core::Status Stack::grid_rollup() {
   grid_->update(filter_->estimate_node(), live_nodes_.data(), live_nodes_.size());
   if (const occupancy::OccupancyGrid* grid = grid_->ml_grid()) {
     occupancy::classify_cells(*grid, thresholds_, cells_.data(), in_view_.data(),
-                              looked_over_.empty() ? nullptr : looked_over_.data(),
-                              disputed_.empty() ? nullptr : disputed_.data());
+                              looked_over_.empty() ? nullptr : looked_over_.data());
   }
   grid_changed_ = true;
   ++counters_.rollups;

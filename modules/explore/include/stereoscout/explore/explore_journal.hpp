@@ -41,7 +41,6 @@ enum class ExploreEventKind : std::uint8_t {
   contacts_cleared,  // before concluding "explored" or "no way back"
   blacklist_released,  // before concluding "explored": held blacklisted goals may be chosen again
   crossing_traces,   // before concluding "no plan" or "explored": a person's old traces are crossed
-  crossing_holds,    // ... the grid's disputed near-hit holds are crossed (cross_disputed_holds)
   following_trail,   // before concluding "explored" or "no way back": plans may follow the robot's own path
   explored,          // no goal worth min_goal_value is left
   time_limit,        // explore.time_limit_s reached

@@ -44,7 +44,6 @@
 // All buffers are allocated by the constructor; step() allocates nothing.
 
 #include <cstdint>
-#include <vector>
 
 #include "stereoscout/core/geometry.hpp"
 #include "stereoscout/core/messages.hpp"
@@ -118,7 +117,6 @@ struct ExploreCounters {
   std::uint64_t blacklist_releases = 0;  // held blacklistings lifted before concluding "explored" (blacklist_releases)
   std::uint64_t shut_gap_lifts = 0;  // shut gaps lifted before concluding "explored" or "no way back" (shut_gap_hold_s)
   std::uint64_t trace_crossings = 0;   // plans let cross old traces rather than conclude "no plan" or "nothing left"
-  std::uint64_t hold_crossings = 0;    // ... cross disputed holds of the grid (cross_disputed_holds)
   std::uint64_t trail_follows = 0;     // plans let follow the robot's own path rather than conclude "explored" or "no way back"
   std::uint64_t traces_confirmed = 0;  // trace cells still occupied after a look: obstacles since
   std::uint64_t plans_kept_for_walkers = 0;  // blocked only by passers-by: kept (wait_for_walkers)
@@ -160,8 +158,6 @@ class Explorer {
   void shut_gap(const ExploreInput& input);
   bool lift_shut_gaps(const ExploreInput& input);
   bool start_crossing_traces(const ExploreInput& input);
-  bool start_crossing_holds(const ExploreInput& input);
-  GridView open_disputed_holds(const GridView& grid, const GridView& source);
   bool start_following_trail(const ExploreInput& input);
   template <typename Changed>
   bool start_last_resort(bool& active, Changed&& changed, ExploreEventKind kind, std::uint64_t& count,
@@ -237,14 +233,11 @@ class Explorer {
   RecentObstacles recent_;
   TraceMemory traces_;
   TrailMemory trail_;
-  std::vector<std::uint8_t> held_open_;  // open_disputed_holds()'s copy (empty: cross_disputed_holds off)
   ExploreJournal journal_;
   GridView planning_grid_;  // the input grid with the contact, shut gap and recent obstacle cells occupied (last rebuild): the safety check's
   bool planning_on_copy_ = false;  // planning_grid_ is a stamped copy (contacts, shut gaps, recent obstacles)
   bool crossing_traces_ = false;   // the navigation map holds a person's old traces free
   bool following_trail_ = false;   // ... and the robot's own path open
-  bool crossing_holds_ = false;    // ... the grid's disputed holds free (cross_disputed_holds)
-  std::size_t holds_opened_ = 0;   // by the last rebuild
   std::size_t trail_cells_opened_ = 0;  // by the last rebuild
   bool stalled_ = false;           // this tick
   bool holding_for_scan_ = false;  // standing still for what the scan guard saw

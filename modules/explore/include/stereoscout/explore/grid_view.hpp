@@ -39,10 +39,6 @@ struct GridView {
   // explore.trace_view_updates updates in the camera's view; TraceMemory). Where the grid now
   // holds such a cell free, paths pay explore.remembered_obstacle_cost to cross it.
   const std::uint8_t* seen_standing = nullptr;
-  // Optional, same layout: nonzero where the cell holds an obstacle only by the grid's near-hit
-  // hold against a far miss that passed it by (the occupancy grid's disputed, with
-  // grid.near_hit_hold_range_m). explore.cross_disputed_holds plans across them as a last resort.
-  const std::uint8_t* disputed = nullptr;
 
   bool contains(int x, int y) const { return x >= 0 && y >= 0 && x < width && y < height; }
   std::size_t index(int x, int y) const {
@@ -53,7 +49,6 @@ struct GridView {
   bool marks_looked_over() const { return looked_over != nullptr; }
   bool was_looked_over(int x, int y) const { return looked_over != nullptr && looked_over[index(x, y)] != 0; }
   bool was_seen_standing(int x, int y) const { return seen_standing != nullptr && seen_standing[index(x, y)] != 0; }
-  bool is_disputed(std::size_t i) const { return disputed != nullptr && disputed[i] != 0; }
   Eigen::Vector2d center(int x, int y) const { return origin_m + resolution_m * Eigen::Vector2d(x + 0.5, y + 0.5); }
   Eigen::Vector2i cell_of(const Eigen::Vector2d& point) const {
     const Eigen::Vector2d local = (point - origin_m) / resolution_m;

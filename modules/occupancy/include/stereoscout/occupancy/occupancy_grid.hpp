@@ -147,11 +147,10 @@ struct GridSegment {
 class OccupancyGrid;
 // Classifies every cell of `grid` into `cells` (grid.geometry().cell_count() entries, row-major
 // like the grid), and, if `in_view` is given, writes 1 there for the cells that were in view
-// (OccupancyGrid::in_view), else 0; likewise `looked_over` (OccupancyGrid::looked_over) and
-// `disputed` (OccupancyGrid::disputed). No allocation: the tick loop calls it after each roll-up.
+// (OccupancyGrid::in_view), else 0; likewise `looked_over` (OccupancyGrid::looked_over). No
+// allocation: the tick loop calls it after each roll-up.
 void classify_cells(const OccupancyGrid& grid, const CellThresholds& thresholds, CellState* cells,
-                    std::uint8_t* in_view = nullptr, std::uint8_t* looked_over = nullptr,
-                    std::uint8_t* disputed = nullptr);
+                    std::uint8_t* in_view = nullptr, std::uint8_t* looked_over = nullptr);
 
 // One valid column of a scan, compact (robot frame at capture time): 16 bytes, so the ring of
 // 4096 scans x 640 columns stays at 42 MB.
@@ -232,11 +231,8 @@ class OccupancyGrid {
   bool same_cells_as(const OccupancyGrid& other) const;
   bool in_view(int cell_x, int cell_y) const { return (cell_flags_[index(cell_x, cell_y)] & kInView) != 0U; }
   bool looked_over(int cell_x, int cell_y) const { return (cell_flags_[index(cell_x, cell_y)] & kLookedOver) != 0U; }
-  // Holds an obstacle only by a near hit's hold (near_hit_hold_range_m): a far miss has passed
-  // the cell by since the hold began, which without the hold would have lowered it.
-  bool disputed(int cell_x, int cell_y) const;
-  // in_view(), looked_over() and disputed() of every cell as 1 or 0, row-major (any may be null).
-  void copy_marks(std::uint8_t* in_view, std::uint8_t* looked_over, std::uint8_t* disputed = nullptr) const;
+  // in_view() and looked_over() of every cell as 1 or 0, row-major (either may be null).
+  void copy_marks(std::uint8_t* in_view, std::uint8_t* looked_over) const;
   // Cell containing a map-frame point; false when outside the grid.
   bool cell_of(double x_m, double y_m, int& cell_x, int& cell_y) const;
 
@@ -254,7 +250,6 @@ class OccupancyGrid {
   static constexpr std::uint8_t kLookedOver = 1U << kLookedOverBit;  // a column's ray passed over it, blind zone too
   static constexpr std::uint8_t kHeldByNearHit = 16U;  // near_hit_hold_range_m: far misses pass the cell by
   static constexpr std::uint8_t kWasFree = 32U;  // near misses left it free once: a near hit does not hold it
-  static constexpr std::uint8_t kHoldRefusedMiss = 64U;  // held, a far miss passed it by (disputed())
   static constexpr double kNoLimit = std::numeric_limits<double>::infinity();
   // How a ray treats its cells (insert_column sets it from the model).
   struct RayRules {
@@ -280,8 +275,6 @@ class OccupancyGrid {
   bool marked_hit_this_scan(int cell_x, int cell_y) const;
   // Holds an obstacle (log-odds above 0) that a near hit put there (near_hit_hold_range_m).
   bool held_by_near_hit(int cell_x, int cell_y) const;
-  // A far miss passed a held cell by: marks it disputed().
-  void refuse_miss(int cell_x, int cell_y);
   // once_per_scan: starts the numbering of a new scan's misses.
   void begin_scan();
   void set_hit_marks(const Eigen::Vector2d& end, bool marked);
@@ -304,8 +297,7 @@ class OccupancyGrid {
   GridGeometry geometry_;
   LogOddsModel model_;
   std::unique_ptr<float[]> cells_;
-  // kLastHitAtCameraHeight | kHitThisScan | kInView | kLookedOver | kHeldByNearHit | kWasFree |
-  // kHoldRefusedMiss
+  // kLastHitAtCameraHeight | kHitThisScan | kInView | kLookedOver | kHeldByNearHit | kWasFree
   std::unique_ptr<std::uint8_t[]> cell_flags_;
   // once_per_scan: the number of the scan that last missed each cell, against scan_number_
   // (counts inserts from 1, wraps to 1 after 255 with every stamp reset); empty otherwise.

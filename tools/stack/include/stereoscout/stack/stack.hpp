@@ -73,8 +73,7 @@ struct Board {
 // The explorer's view of classified grid cells: the occupancy module's CellState codes read
 // as the explorer's bytes (the two enums have the same values, checked at compile time).
 explore::GridView navigation_view(const occupancy::GridGeometry& geometry, const occupancy::CellState* cells,
-                                  const std::uint8_t* in_view, const std::uint8_t* looked_over = nullptr,
-                                  const std::uint8_t* disputed = nullptr);
+                                  const std::uint8_t* in_view, const std::uint8_t* looked_over = nullptr);
 
 enum class Localization : std::uint8_t { rbpf, groundtruth, odometry };
 bool parse_localization(const std::string& text, Localization& localization);
@@ -230,7 +229,6 @@ class Stack {
   std::vector<occupancy::CellState> cells_;  // the estimate's grid classified, the explorer's view
   std::vector<std::uint8_t> in_view_;        // its in-view marks, same layout
   std::vector<std::uint8_t> looked_over_;    // its looked-over marks (empty: grid.looked_over_range_m 0)
-  std::vector<std::uint8_t> disputed_;       // its disputed holds (empty: explore.cross_disputed_holds off)
   explore::GridView view_;
 
   // Sensors.
