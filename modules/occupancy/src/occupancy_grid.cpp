@@ -43,8 +43,7 @@ LogOddsModel LogOddsModel::from_config(const core::GridConfig& config) {
           static_cast<float>(config.in_view_range_m), static_cast<float>(config.looked_over_range_m),
           static_cast<float>(config.free_end_sigmas), static_cast<float>(config.free_end_short_m),
           static_cast<float>(config.hit_full_weight_range_m), static_cast<float>(config.near_hit_hold_range_m),
-          static_cast<float>(config.near_hit_hold_end_m), static_cast<float>(config.driven_floor_radius_m),
-          logit(config.free_threshold), config.once_per_scan};
+          static_cast<float>(config.near_hit_hold_end_m), logit(config.free_threshold), config.once_per_scan};
 }
 
 CellThresholds CellThresholds::from_config(const core::GridConfig& config) {
@@ -477,31 +476,6 @@ void OccupancyGrid::insert_points(const ScanFrame& frame, EachPoint&& each_point
   mark_obstacles(true);
   each_point([&](const ScanPoint& point) { insert_column(frame.origin, end_of(point), point); });
   mark_obstacles(false);
-  if (model_.driven_floor_radius_m > 0.0F) mark_driven_floor(frame.pose);
-}
-
-void OccupancyGrid::mark_driven_floor(const core::Pose2& pose) {
-  const double radius = model_.driven_floor_radius_m;
-  const double resolution = geometry_.resolution_m;
-  const auto first = [&](double at_m, double origin_m) {
-    return static_cast<int>(std::floor((at_m - radius - origin_m) / resolution));
-  };
-  const int x0 = first(pose.x, geometry_.origin_x_m);
-  const int y0 = first(pose.y, geometry_.origin_y_m);
-  const int span = static_cast<int>(std::ceil(2.0 * radius / resolution)) + 1;
-  for (int y = y0; y <= y0 + span; ++y) {
-    for (int x = x0; x <= x0 + span; ++x) {
-      if (!geometry_.contains(x, y)) continue;
-      // The cell's corner farthest from the centre decides: the whole cell lies within.
-      const double left = geometry_.origin_x_m + x * resolution - pose.x;
-      const double bottom = geometry_.origin_y_m + y * resolution - pose.y;
-      const double far_x = std::max(std::abs(left), std::abs(left + resolution));
-      const double far_y = std::max(std::abs(bottom), std::abs(bottom + resolution));
-      if (far_x * far_x + far_y * far_y > radius * radius) continue;
-      std::uint8_t& flags = cell_flags_[index(x, y)];
-      flags = static_cast<std::uint8_t>((flags | kWasFree) & ~kHeldByNearHit);
-    }
-  }
 }
 
 void OccupancyGrid::insert(const ScanView& scan, const core::Pose2& pose) {

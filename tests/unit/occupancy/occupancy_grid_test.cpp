@@ -187,25 +187,6 @@ TEST(OccupancyGrid, AFarMissThatRunsOnBeyondAHeldCellLowersIt) {
   }
 }
 
-// With driven_floor_radius_m, a cell the robot's disc covered at a scan's pose is floor: a near
-// hit there later (a wall's copy drawn into a doorway by a pose a little off) is not held, and
-// the far miss that passes it lowers it as without the hold. Without the mark it is held.
-TEST(OccupancyGrid, ANearHitOnFloorTheRobotStoodOnIsNotHeld) {
-  const core::Pose2 near_pose{0.05, 0.05, 0.0};
-  const core::Pose2 far_pose{-0.45, 0.05, 0.0};
-  for (const float radius_m : {0.0F, 0.2F}) {
-    LogOddsModel model;
-    model.near_hit_hold_range_m = 0.6F;
-    model.near_hit_hold_end_m = 0.3F;  // the far miss below passes a held cell 15 by
-    model.driven_floor_radius_m = radius_m;
-    OccupancyGrid grid(small_geometry(), model);
-    grid.insert(core::DepthScan{}, core::Pose2{0.55, 0.05, 0.0});  // the robot stood on cell 15
-    grid.insert(one_column(0.5F, 0.0F, Kind::obstacle), near_pose);
-    grid.insert(one_column(1.3F, 0.0F, Kind::free), far_pose);
-    EXPECT_FLOAT_EQ(grid.log_odds(15, 10), radius_m > 0.0F ? 0.85F - 0.4F : 0.85F) << radius_m;
-  }
-}
-
 // A near hit does not hold a cell that near views saw free: a door's jamb drawn into the
 // doorway by a pose a little off lands on floor seen free before. Floor seen four times out to
 // 0.8 m from A makes cell 14 free; three near hits there then make it occupied, but one far

@@ -40,11 +40,6 @@
 //     only within near_hit_hold_end_m of its ray's end: the rays that wear a wall away end
 //     on it, and one that runs on beyond the cell saw through it (a doorway seen from
 //     inside its room). Off by default;
-//   - with driven_floor_radius_m, the cells wholly within it of the robot's centre at a scan's
-//     pose are floor the robot stood on: marked as near views' free floor (a near hit there
-//     later is not held), and a hold there ends. A copy of a wall drawn from near under a pose
-//     a little off into a doorway the robot drove through is then worn away by far misses,
-//     as without the hold. Off by default;
 //   - invalid columns change nothing, and no column changes a cell nearer than its
 //     measurable_from_m (the part of the view the other camera does not share, or beyond
 //     the matcher's largest disparity): it could not have seen an obstacle there.
@@ -124,7 +119,6 @@ struct LogOddsModel {
   float hit_full_weight_range_m = 0.0F;  // grid.hit_full_weight_range_m (0: every hit in full)
   float near_hit_hold_range_m = 0.0F;  // grid.near_hit_hold_range_m (0: misses lower obstacles at any range)
   float near_hit_hold_end_m = 1.5F;  // grid.near_hit_hold_end_m
-  float driven_floor_radius_m = 0.0F;  // grid.driven_floor_radius_m (0: no cell is known floor)
   float free_below = -1.41F;  // grid.free_threshold's log-odds: a cell below it is free
   bool once_per_scan = false;    // grid.once_per_scan (see the header comment)
   static LogOddsModel from_config(const core::GridConfig& config);
@@ -297,9 +291,6 @@ class OccupancyGrid {
   void clear_camera_height_hits(double start_x, double start_y, double end_x, double end_y);
   // One column: origin and end point in the map frame.
   void insert_column(const Eigen::Vector2d& origin, const Eigen::Vector2d& end, const ScanPoint& point);
-  // driven_floor_radius_m: the cells wholly within it of the robot's centre are floor it stands
-  // on; a near hit there later is not held, and a hold there ends.
-  void mark_driven_floor(const core::Pose2& pose);
   // Sets `flag` in the cells from `from` to `to` (map frame), both cells included.
   void mark_cells(const Eigen::Vector2d& from, const Eigen::Vector2d& to, std::uint8_t flag);
 
