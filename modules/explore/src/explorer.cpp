@@ -655,6 +655,7 @@ void Explorer::begin_look(const ExploreInput& input) {
   look_step_ = 0;
   look_turned_rad_ = 0.0;
   look_last_heading_ = input.pose.theta;
+  look_began_s_ = input.time_s;
 }
 
 void Explorer::look_step(const ExploreInput& input, ExploreOutput& output) {
@@ -684,7 +685,9 @@ void Explorer::finish_look(const ExploreInput& input) {
   // trace_confirm_seen_floor, only where it sees the floor). While crossing traces, the map
   // changes with that, and with the traces that aged while the robot stood.
   const double seen_from_m = params_.explore.trace_confirm_seen_floor ? params_.unseen_floor_radius_m() : 0.0;
-  counters_.traces_confirmed += traces_.confirm_near(input.grid, position_of(input.pose), seen_from_m, input.time_s);
+  const double traces_as_of_s = params_.explore.trace_confirm_before_look ? look_began_s_ : input.time_s;
+  counters_.traces_confirmed +=
+      traces_.confirm_near(input.grid, position_of(input.pose), seen_from_m, input.time_s, traces_as_of_s);
   if (!return_after_look_ && !resume_after_look_) {
     if (crossing_traces_) rebuild_map(input);
     state_ = ExploreState::choose_goal;

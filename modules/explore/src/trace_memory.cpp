@@ -169,11 +169,11 @@ GridView TraceMemory::forget_traces(const GridView& grid, double time_s) {
 }
 
 std::size_t TraceMemory::confirm_near(const GridView& grid, const Eigen::Vector2d& centre, double seen_from_m,
-                                      double time_s) {
+                                      double time_s, double traces_as_of_s) {
   if (forget_after_s_ <= 0.0 || !same_geometry(grid)) return 0;
   std::size_t confirmed = 0;
   for_cells_within(grid, centre, confirm_radius_m_, [&](int, int, std::size_t i, double distance_m) {
-    if (distance_m < seen_from_m || !occupied_trace(grid, i, time_s)) return;
+    if (distance_m < seen_from_m || !occupied_trace(grid, i, time_s) || !trace(i, traces_as_of_s)) return;
     turned_occupied_s_[i] = kNever;
     ++confirmed;
   });

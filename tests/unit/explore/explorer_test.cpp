@@ -1666,6 +1666,26 @@ TEST(Explorer, WithoutSeenFloorOnlyTheLookAtTheStopConfirmsTheTraceInTheBlindZon
   EXPECT_FALSE(plan_leads_past_the_door(explorer));
 }
 
+// The person walks past the door while the robot looks, 1.25 m from the cells (within the
+// confirm radius, where the camera sees the floor). With trace_confirm_before_look the look
+// watched them appear and does not confirm them: they stay traces, and the plan to the goal
+// beyond the door crosses them. Without it the look confirms them and shuts the door.
+TEST(Explorer, ALookConfirmsNoTraceThatAppearedWhileItLooked) {
+  for (const bool before_look : {false, true}) {
+    TraceInTheDoor door;
+    door.params.explore.trace_confirm_before_look = before_look;
+    Explorer explorer(door.params);
+    const GridView grid = door.scene.grid.view();
+    ASSERT_EQ(explorer.step(input_at(grid, 2.0, 3.05, 0.0, 0.0, true)).state, ExploreState::look_around);
+    door.walk_past(CellState::occupied);
+    explorer.step(input_at(grid, 2.0, 3.05, 0.0, 0.5, true));
+    finish_a_look(explorer, grid, 2.0, 3.05, 11.0);
+    EXPECT_EQ(explorer.counters().traces_confirmed, before_look ? 0U : 9U) << before_look;
+    EXPECT_EQ(plan_leads_past_the_door(explorer), before_look) << before_look;
+    EXPECT_EQ(explorer.counters().trace_crossings, before_look ? 1U : 0U) << before_look;
+  }
+}
+
 // Crossing traces ends with the goal it was for, also when the goal is abandoned (seen on the
 // way): the next goals are chosen on the map with the traces, and crossing them again is a
 // new last resort, counted again.

@@ -80,14 +80,37 @@ TEST(TraceMemory, ALookConfirmsNoTraceWhereTheCameraSeesNoFloor) {
   EXPECT_TRUE(std::isinf(traces.nearest_trace_ahead_m(grid.view(), robot, east, 0.4, 11.0)));
   EXPECT_TRUE(std::isinf(traces.nearest_trace_ahead_m(grid.view(), robot, east, 1.5, 10.9)));  // not yet traces
   EXPECT_TRUE(std::isinf(traces.nearest_trace_ahead_m(grid.view(), robot, -east, 1.5, 11.0)));  // behind
-  EXPECT_EQ(traces.confirm_near(grid.view(), robot, 0.7, 11.0), 1U);
+  EXPECT_EQ(traces.confirm_near(grid.view(), robot, 0.7, 11.0, 11.0), 1U);
   const GridView forgotten = traces.forget_traces(grid.view(), 11.0);
   EXPECT_EQ(forgotten.at(15, 10), CellState::free);
   EXPECT_EQ(forgotten.at(20, 10), CellState::occupied);
   EXPECT_NEAR(traces.nearest_trace_ahead_m(grid.view(), robot, east, 1.5, 11.0), 0.5, 1e-9);
   // From farther back the same look confirms it.
-  EXPECT_EQ(traces.confirm_near(grid.view(), Eigen::Vector2d(0.65, 1.05), 0.7, 12.0), 1U);
+  EXPECT_EQ(traces.confirm_near(grid.view(), Eigen::Vector2d(0.65, 1.05), 0.7, 12.0, 12.0), 1U);
   EXPECT_TRUE(std::isinf(traces.nearest_trace_ahead_m(grid.view(), robot, east, 1.5, 12.0)));
+}
+
+// A look that began at 12 s confirms the cell that was a trace by then (turned occupied at
+// 1 s), not the one that turned occupied at 6 s, which it watched appear, though both are
+// traces when it ends.
+TEST(TraceMemory, ALookConfirmsOnlyWhatWasATraceWhenItBegan) {
+  core::ExploreConfig config;
+  config.trace_forget_after_s = 10.0;
+  config.trace_confirm_radius_m = 2.0;
+  TraceMemory traces(config, 40, 20);
+  TestGrid grid(40, 20, CellState::free);
+  traces.observe(grid.view(), 0.0);
+  grid.set(15, 10, CellState::occupied);
+  traces.observe(grid.view(), 1.0);
+  grid.set(20, 10, CellState::occupied);
+  traces.observe(grid.view(), 6.0);
+  EXPECT_EQ(traces.confirm_near(grid.view(), Eigen::Vector2d(1.05, 1.05), 0.0, 17.0, 12.0), 1U);
+  const GridView forgotten = traces.forget_traces(grid.view(), 17.0);
+  EXPECT_EQ(forgotten.at(15, 10), CellState::occupied);
+  EXPECT_EQ(forgotten.at(20, 10), CellState::free);
+  // A later look that began after both were traces confirms the second.
+  EXPECT_EQ(traces.confirm_near(grid.view(), Eigen::Vector2d(1.05, 1.05), 0.0, 30.0, 17.0), 1U);
+  EXPECT_EQ(traces.forget_traces(grid.view(), 30.0).cells, grid.view().cells);
 }
 
 TEST(TraceMemory, AnOldTraceAwayFromStandingObstaclesIsForgottenUntilALookConfirmsIt) {
@@ -116,7 +139,7 @@ TEST(TraceMemory, AnOldTraceAwayFromStandingObstaclesIsForgottenUntilALookConfir
   // A look from (0.55, 1.05): the trace within a metre is still there, so it is an obstacle;
   // the one 2 m away was out of reach of the look and stays a trace.
   const core::AllocationScope scope;
-  EXPECT_EQ(traces.confirm_near(grid.view(), Eigen::Vector2d(0.55, 1.05), 0.0, 12.0), 1U);
+  EXPECT_EQ(traces.confirm_near(grid.view(), Eigen::Vector2d(0.55, 1.05), 0.0, 12.0, 12.0), 1U);
   EXPECT_EQ(traces.confirmed(), 1U);
   const GridView after = traces.forget_traces(grid.view(), 12.0);
   EXPECT_EQ(scope.allocations(), 0U);

@@ -265,6 +265,7 @@ class Explorer {
   int look_step_ = 0;
   double look_turned_rad_ = 0.0;
   double look_last_heading_ = 0.0;
+  double look_began_s_ = 0.0;  // begin_look's time: trace_confirm_before_look
   double pan_target_rad_ = 0.0;
   // Backing off after a stall (or to see a trace).
   bool backing_off_ = false;

@@ -20,6 +20,8 @@
 // Traces within trace_confirm_radius_m that are still occupied after a look are obstacles from
 // then on (confirm_near()), but for those where the camera sees no floor (near the robot): a
 // look cannot clear them, and the explorer backs off before it looks (nearest_trace_ahead_m()).
+// With explore.trace_confirm_before_look, only those that were traces when the look began: a
+// cell that turned occupied while the robot looked is what the look watched appear.
 // Not every trace is a person: the grid also first holds free, then occupied, the cells of a
 // blank wall that grazing rays erased; crossing traces always, not only when stuck, led plans
 // through the office's corridor walls (docs/results.md). So a trace next to an occupied cell
@@ -76,10 +78,13 @@ class TraceMemory {
   // off, or the geometry is not the one observed). Valid until the next call.
   GridView forget_traces(const GridView& grid, double time_s);
   // Trace cells from seen_from_m out to trace_confirm_radius_m of `centre` that `grid` still
-  // holds occupied become obstacles; returns how many. Nearer ones stay traces: the camera
-  // sees no floor there, so a look could not have cleared them (a person who passed right in
-  // front of the robot).
-  std::size_t confirm_near(const GridView& grid, const Eigen::Vector2d& centre, double seen_from_m, double time_s);
+  // holds occupied, and that were traces already at traces_as_of_s (at most time_s), become
+  // obstacles; returns how many. Nearer ones stay traces: the camera sees no floor there, so a
+  // look could not have cleared them (a person who passed right in front of the robot). So do
+  // cells that turned occupied too late to be traces at traces_as_of_s: a look that began then
+  // watched them appear, it did not find them still there.
+  std::size_t confirm_near(const GridView& grid, const Eigen::Vector2d& centre, double seen_from_m, double time_s,
+                           double traces_as_of_s);
   // The distance from `centre` to the nearest trace cell that `grid` still holds occupied and
   // that lies ahead (along the unit vector `heading`), if one lies within radius_m; infinity
   // otherwise.
