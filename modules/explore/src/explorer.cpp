@@ -682,8 +682,10 @@ void Explorer::look_step(const ExploreInput& input, ExploreOutput& output) {
 void Explorer::finish_look(const ExploreInput& input) {
   fresh_look_ = true;
   // What the look saw still standing near the robot is no person's trace (with
-  // trace_confirm_seen_floor, only where it sees the floor). While crossing traces, the map
-  // changes with that, and with the traces that aged while the robot stood.
+  // trace_confirm_seen_floor, only where it sees the floor; with trace_confirm_before_look,
+  // only what was a trace when the look began, not what appeared while it looked). While
+  // crossing traces, the map changes with that, and with the traces that aged while the robot
+  // stood.
   const double seen_from_m = params_.explore.trace_confirm_seen_floor ? params_.unseen_floor_radius_m() : 0.0;
   const double traces_as_of_s = params_.explore.trace_confirm_before_look ? look_began_s_ : input.time_s;
   counters_.traces_confirmed +=
