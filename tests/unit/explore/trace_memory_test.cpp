@@ -62,13 +62,18 @@ TEST(TraceMemory, ObserveDoesNotAllocateAndIsOffWithNoMarginNoForgettingAndNoVie
   EXPECT_EQ(off.forget_traces(grid.view(), 100.0).cells, grid.view().cells);
 }
 
+// Cells turned occupied are traces after 10 s; a look confirms those within confirm_radius_m.
+core::ExploreConfig forgetting_config(double confirm_radius_m) {
+  core::ExploreConfig config;
+  config.trace_forget_after_s = 10.0;
+  config.trace_confirm_radius_m = confirm_radius_m;
+  return config;
+}
+
 // A look confirms no trace nearer than seen_from_m, where the camera sees no floor: a person
 // who walked past right in front of the robot left cells the look could not have cleared.
 TEST(TraceMemory, ALookConfirmsNoTraceWhereTheCameraSeesNoFloor) {
-  core::ExploreConfig config;
-  config.trace_forget_after_s = 10.0;
-  config.trace_confirm_radius_m = 2.0;
-  TraceMemory traces(config, 40, 20);
+  TraceMemory traces(forgetting_config(2.0), 40, 20);
   TestGrid grid(40, 20, CellState::free);
   traces.observe(grid.view(), 0.0);
   grid.set(15, 10, CellState::occupied);  // 0.5 m from (1.05, 1.05)
@@ -94,10 +99,7 @@ TEST(TraceMemory, ALookConfirmsNoTraceWhereTheCameraSeesNoFloor) {
 // 1 s), not the one that turned occupied at 6 s, which it watched appear, though both are
 // traces when it ends.
 TEST(TraceMemory, ALookConfirmsOnlyWhatWasATraceWhenItBegan) {
-  core::ExploreConfig config;
-  config.trace_forget_after_s = 10.0;
-  config.trace_confirm_radius_m = 2.0;
-  TraceMemory traces(config, 40, 20);
+  TraceMemory traces(forgetting_config(2.0), 40, 20);
   TestGrid grid(40, 20, CellState::free);
   traces.observe(grid.view(), 0.0);
   grid.set(15, 10, CellState::occupied);
@@ -114,10 +116,7 @@ TEST(TraceMemory, ALookConfirmsOnlyWhatWasATraceWhenItBegan) {
 }
 
 TEST(TraceMemory, AnOldTraceAwayFromStandingObstaclesIsForgottenUntilALookConfirmsIt) {
-  core::ExploreConfig config;
-  config.trace_forget_after_s = 10.0;
-  config.trace_confirm_radius_m = 1.0;
-  TraceMemory traces(config, 40, 20);
+  TraceMemory traces(forgetting_config(1.0), 40, 20);
   TestGrid grid(40, 20, CellState::free);
   grid.fill(30, 0, 40, 20, CellState::unknown);
   grid.fill(10, 10, 21, 11, CellState::occupied);  // a wall
