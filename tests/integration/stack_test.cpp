@@ -130,7 +130,7 @@ TEST_F(StackRun, SameSeedSameOutputsNoHeapInLoopAndEveryReportKey) {
   for (const char* key : {"coverage", "ate_rmse_m", "odometry_ate_rmse_m", "map_agreement", "collisions",
                           "collision_events_people", "updates", "landmarks", "grids_held_mean", "grids_held_max",
                           "resamplings", "sim_time_s", "wall_time_s", "reobservation_consistency", "near_miss_m",
-                          "near_misses"}) {
+                          "near_misses", "door_visit_reach_m", "door_visits", "door_crossings", "door_visits_touched"}) {
     EXPECT_GE(report_number(a, key), 0.0) << key << " missing or null\n" << a;
   }
   // The budget check: generous budgets pass, 1 us budgets fail (no timing is asserted).

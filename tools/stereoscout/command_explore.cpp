@@ -108,6 +108,16 @@ int run_explore(int argc, char** argv) {
     const host_sim::NearMisses::Event& event = near_misses.log(i);
     context.near_miss_log.push_back({event.time_s, event.pose.x, event.pose.y, event.pose.theta, event.clearance_m});
   }
+  const host_sim::DoorVisits& door_visits = board.simulator().door_visits();
+  context.door_visit_reach_m = setup.config.sim.door_visit_reach_m;
+  context.door_visits = door_visits.count();
+  context.door_crossings = door_visits.crossings();
+  context.door_visits_touched = door_visits.touched_count();
+  for (std::size_t i = 0; i < door_visits.log_size(); ++i) {
+    const host_sim::DoorVisits::Visit& visit = door_visits.log(i);
+    context.door_visit_log.push_back({visit.time_s, static_cast<double>(visit.door), visit.pose.x, visit.pose.y,
+                                      visit.clearance_m, visit.crossed ? 1.0 : 0.0, visit.touched ? 1.0 : 0.0});
+  }
   context.distance_m = board.simulator().distance_travelled_m();
   context.log_file = record ? "sensors.log" : "";
   context.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();

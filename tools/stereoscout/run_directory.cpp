@@ -399,6 +399,27 @@ void number_rows(report::JsonWriter& json, const char* key, const std::vector<st
   json.end_array();
 }
 
+// The door visits' counts, the 10th percentile and the median of the logged visits' least
+// clearances (null without a visit), and the log.
+void write_door_visits(report::JsonWriter& json, const RunContext& context) {
+  json.number("door_visit_reach_m", context.door_visit_reach_m)
+      .unsigned_integer("door_visits", context.door_visits)
+      .unsigned_integer("door_crossings", context.door_crossings)
+      .unsigned_integer("door_visits_touched", context.door_visits_touched);
+  std::vector<double> clearances;
+  for (const auto& visit : context.door_visit_log) clearances.push_back(visit[4]);
+  std::sort(clearances.begin(), clearances.end());
+  const auto quantile = [&clearances](double q) {
+    return clearances[static_cast<std::size_t>(q * static_cast<double>(clearances.size() - 1) + 0.5)];
+  };
+  if (clearances.empty()) {
+    json.null("door_clearance_p10_m").null("door_clearance_median_m");
+  } else {
+    json.number("door_clearance_p10_m", quantile(0.1)).number("door_clearance_median_m", quantile(0.5));
+  }
+  number_rows(json, "door_visit_log", context.door_visit_log);
+}
+
 std::string report_json(const stack::Stack& stack, const core::SystemConfig& config, const RunContext& context,
                         const RunScore& score, const std::map<std::string, std::string>& digests) {
   const occupancy::JustInTimeGridStats& grid = stack.grid().stats();
@@ -422,9 +443,11 @@ std::string report_json(const stack::Stack& stack, const core::SystemConfig& con
     number_rows(json, "collision_log", context.collision_log);
     json.number("near_miss_m", context.near_miss_m).unsigned_integer("near_misses", context.near_misses);
     number_rows(json, "near_miss_log", context.near_miss_log);
+    write_door_visits(json, context);
   } else {
     json.null("collisions").null("collision_events").null("collision_events_people").null("person_contacts");
     json.null("near_miss_m").null("near_misses");
+    json.null("door_visit_reach_m").null("door_visits");
   }
   json.unsigned_integer("updates", stack.counters().updates)
       .unsigned_integer("landmarks", score.landmarks)

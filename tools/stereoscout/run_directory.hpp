@@ -35,6 +35,12 @@ struct RunContext {
   double near_miss_m = 0.0;                    // the simulator's threshold; near misses below
   std::uint64_t near_misses = 0;
   std::vector<std::array<double, 5>> near_miss_log;  // time s, true x, y, theta, least clearance m
+  double door_visit_reach_m = 0.0;             // the simulator's door visit zone beyond the radius
+  std::uint64_t door_visits = 0;
+  std::uint64_t door_crossings = 0;
+  std::uint64_t door_visits_touched = 0;
+  // time s, door index, true x, y, least clearance m, crossed (0/1), touched (0/1)
+  std::vector<std::array<double, 7>> door_visit_log;  // docs/report.md, `door_visit_log`
   double distance_m = 0.0;                     // driven (simulator), 0 if unknown
   double wall_time_s = 0.0;
   std::string log_file;                        // file name inside the run directory, or empty

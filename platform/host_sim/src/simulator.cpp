@@ -30,7 +30,9 @@ Simulator::Simulator(const World& world, const core::RobotConfig& robot, const c
       person_in_contact_(world.people.size(), 0),
       person_last_in_view_s_(world.people.size(), -1.0),
       person_in_view_distance_m_(world.people.size(), -1.0),
-      near_misses_(sim.near_miss_m, kContactClearance_m) {
+      near_misses_(sim.near_miss_m, kContactClearance_m),
+      door_visits_(world.doorways, sim.door_visit_reach_m > 0.0 ? robot.radius_m + sim.door_visit_reach_m : 0.0,
+                   kContactClearance_m) {
   teleport(world.start);
 }
 
@@ -140,7 +142,10 @@ void Simulator::integrate(double dt_s) {
         ++collision_events_;
         if (hit != kStaticObstacle) ++person_collision_events_;
       }
-      if (hit == kStaticObstacle) near_misses_.touched();
+      if (hit == kStaticObstacle) {
+        near_misses_.touched();
+        door_visits_.touched();
+      }
       in_contact_ = true;
       contact_with_ = hit;
       command_ = core::DriveCommand{};
@@ -157,10 +162,11 @@ void Simulator::integrate(double dt_s) {
 }
 
 void Simulator::note_clearance() {
-  if (near_misses_.threshold_m() <= 0.0) return;
+  if (near_misses_.threshold_m() <= 0.0 && !door_visits_.active()) return;
   const Eigen::Vector2d centre = pose_.translation();
   const double clearance = (obstacles_.nearest_point(centre) - centre).norm() - robot_.radius_m;
   near_misses_.moved(time_s(), pose_, clearance);
+  door_visits_.moved(time_s(), pose_, clearance);
 }
 
 void Simulator::emit_odometry() {

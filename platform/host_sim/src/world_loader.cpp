@@ -283,6 +283,9 @@ void add_wall_segment(World& world, const WallPiece& prototype, const Eigen::Vec
     piece(cursor, from, prototype.z_min, prototype.z_max, prototype.surface);
     piece(from, to, prototype.z_min, opening.bottom, prototype.surface);
     piece(from, to, opening.top, prototype.z_max, prototype.surface);
+    if (!opening.window && opening.bottom <= 0.0) {
+      world.doorways.push_back(Doorway{a + (b - a) * ((from - start_m) / length), a + (b - a) * ((to - start_m) / length)});
+    }
     if (opening.window) {
       Surface glass;
       glass.texture = Texture::blank;

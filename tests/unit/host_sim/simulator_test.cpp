@@ -237,6 +237,65 @@ TEST(Simulator, ANearMissIsAnApproachThatTouchedNothingAndAContactIsNone) {
   EXPECT_EQ(simulator.near_misses().log_size(), 1U);
 }
 
+// A wall along y = 4 with a 0.9 m door whose middle is x = 2 (as the office's), in a room.
+std::string door_room_yaml() {
+  return "start: [2, 2, 0]\nwalls:\n  - {points: [[0, 0], [6, 0], [6, 8], [0, 8], [0, 0]]}\n"
+         "  - {points: [[0, 4], [6, 4]], openings: [{at: 2.0, width: 0.9, top: 2}]}\n";
+}
+
+TEST(Simulator, EachPassThroughADoorIsAVisitWithItsLeastClearance) {
+  const World world = load_or_fail(door_room_yaml());
+  Simulator simulator(world, core::RobotConfig{}, core::CameraConfig{}, noiseless(), 1);
+  const DoorVisits& visits = simulator.door_visits();
+  ASSERT_TRUE(visits.active());
+  ASSERT_DOUBLE_EQ(visits.zone_m(), 0.35 + 0.15);
+  // North through the door 0.06 m east of its middle: the disc passes the east jamb (2.45, 4)
+  // 0.45 - 0.06 - 0.35 = 0.04 m clear.
+  simulator.teleport(core::Pose2{2.06, 3.0, core::kPi / 2.0});
+  drive(simulator, 0.12, 0.0, 2.0 / 0.12);
+  ASSERT_EQ(visits.log_size(), 1U);
+  EXPECT_EQ(visits.log(0).door, 0U);
+  EXPECT_NEAR(visits.log(0).clearance_m, 0.04, 1e-9);
+  EXPECT_NEAR(visits.log(0).pose.y, 4.0, 0.002);
+  EXPECT_TRUE(visits.log(0).crossed);
+  EXPECT_FALSE(visits.log(0).touched);
+  // Up to the door and back the way it came: a visit, not a crossing.
+  simulator.teleport(core::Pose2{2.0, 5.0, -core::kPi / 2.0});
+  drive(simulator, 0.12, 0.0, 0.8 / 0.12);
+  drive(simulator, -0.12, 0.0, 0.8 / 0.12);
+  EXPECT_EQ(visits.count(), 2U);
+  EXPECT_EQ(visits.crossings(), 1U);
+  EXPECT_FALSE(visits.log(1).crossed);
+  EXPECT_NEAR(visits.log(1).clearance_m, std::hypot(0.45, 0.2) - 0.35, 1e-9);  // its nearest, at y 4.2
+  // 0.12 m off the middle, into the east jamb: a touched visit, as many as the contacts.
+  simulator.teleport(core::Pose2{2.12, 3.0, core::kPi / 2.0});
+  drive(simulator, 0.12, 0.0, 2.0 / 0.12);
+  EXPECT_EQ(simulator.collision_event_count(), 1U);
+  EXPECT_EQ(visits.touched_count(), 1U);
+  EXPECT_EQ(visits.count(), 3U);  // still in the doorway's zone, under way
+  EXPECT_EQ(visits.log_size(), 2U);
+  simulator.teleport(core::Pose2{2.0, 2.0, 0.0});
+  drive(simulator, 0.12, 0.0, 0.1);
+  ASSERT_EQ(visits.log_size(), 3U);
+  EXPECT_TRUE(visits.log(2).touched);
+  EXPECT_LT(visits.log(2).clearance_m, 0.002);
+  // Along the wall 1 m from the door: no visit.
+  simulator.teleport(core::Pose2{3.5, 3.55, 0.0});
+  drive(simulator, 0.12, 0.0, 1.0 / 0.12);
+  EXPECT_EQ(visits.count(), 3U);
+}
+
+TEST(Simulator, NoDoorVisitsAreCountedWithAReachOfNought) {
+  const World world = load_or_fail(door_room_yaml());
+  core::SimConfig sim = noiseless();
+  sim.door_visit_reach_m = 0.0;
+  Simulator simulator(world, core::RobotConfig{}, core::CameraConfig{}, sim, 1);
+  simulator.teleport(core::Pose2{2.0, 3.0, core::kPi / 2.0});
+  drive(simulator, 0.12, 0.0, 2.0 / 0.12);
+  EXPECT_FALSE(simulator.door_visits().active());
+  EXPECT_EQ(simulator.door_visits().count(), 0U);
+}
+
 TEST(Simulator, NoNearMissesAreCountedWithAThresholdOfNought) {
   const World world = load_or_fail(room_yaml("brick"));
   core::SimConfig sim = noiseless();

@@ -49,6 +49,22 @@ TEST(World, DoorsSplitWallsAndKeepTheLintel) {
   EXPECT_DOUBLE_EQ(world.walls[1].z_min, 2.0);
   EXPECT_DOUBLE_EQ(world.walls[2].a.x(), 5.5);
   EXPECT_DOUBLE_EQ(world.walls[2].z_max, 2.5);
+  // The gap between the jambs is its doorway.
+  ASSERT_EQ(world.doorways.size(), 1U);
+  EXPECT_DOUBLE_EQ(world.doorways[0].jamb_a.x(), 4.5);
+  EXPECT_DOUBLE_EQ(world.doorways[0].jamb_b.x(), 5.5);
+  EXPECT_DOUBLE_EQ(world.doorways[0].jamb_b.y(), 0.0);
+}
+
+TEST(World, OnlyOpeningsDownToTheFloorAreDoorways) {
+  const World world = load_or_fail(
+      "start: [1, 1, 0]\nwalls:\n  - {points: [[0, 0], [10, 0], [10, 10]], openings: [{at: 2, width: 2, bottom: 1, top: 2, kind: window},"
+      " {at: 5, width: 1, bottom: 0.3, top: 2}, {at: 14, width: 0.9, top: 2}]}\n");
+  // The window and the hatch 0.3 m up are no ways through; the door on the second segment is.
+  ASSERT_EQ(world.doorways.size(), 1U);
+  EXPECT_DOUBLE_EQ(world.doorways[0].jamb_a.x(), 10.0);
+  EXPECT_NEAR(world.doorways[0].jamb_a.y(), 3.55, 1e-12);
+  EXPECT_NEAR(world.doorways[0].jamb_b.y(), 4.45, 1e-12);
 }
 
 TEST(World, WindowsAreBrightPanes) {

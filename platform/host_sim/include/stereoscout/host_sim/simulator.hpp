@@ -36,6 +36,7 @@
 #include "stereoscout/core/messages.hpp"
 #include "stereoscout/core/ring_buffer.hpp"
 #include "stereoscout/host_sim/ground_truth.hpp"
+#include "stereoscout/host_sim/door_visits.hpp"
 #include "stereoscout/host_sim/near_misses.hpp"
 #include "stereoscout/host_sim/renderer.hpp"
 #include "stereoscout/host_sim/world.hpp"
@@ -101,6 +102,8 @@ class Simulator {
   double distance_travelled_m() const { return distance_m_; }
   // Close approaches to static obstacles that touched nothing (sim.near_miss_m).
   const NearMisses& near_misses() const { return near_misses_; }
+  // Passes near and through the world's doorways (sim.door_visit_reach_m).
+  const DoorVisits& door_visits() const { return door_visits_; }
   const World& world() const { return world_; }
   const core::CameraConfig& camera_config() const { return camera_; }
 
@@ -121,7 +124,7 @@ class Simulator {
   bool still_touching(int target) const;
   CollisionEvent describe_collision(int hit) const;
   void count_person_contacts();
-  // The disc's clearance from static obstacles, for the near misses.
+  // The disc's clearance from static obstacles, for the near misses and door visits.
   void note_clearance();
   void emit_odometry();
 
@@ -155,6 +158,7 @@ class Simulator {
   std::vector<double> person_in_view_distance_m_;
   double distance_m_ = 0.0;
   NearMisses near_misses_;
+  DoorVisits door_visits_;
 };
 
 // A camera that delivers a new pair every 1 / camera.frame_rate_hz of simulated time,

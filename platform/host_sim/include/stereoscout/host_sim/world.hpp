@@ -68,6 +68,14 @@ struct Person {
   Surface surface;
 };
 
+// A door: an opening of a wall that reaches down to the floor (an opening of kind door with
+// bottom 0), between its two jambs. The walls beside it are WallPieces; this only names the
+// gap, for the simulator's door visits (door_visits.hpp).
+struct Doorway {
+  Eigen::Vector2d jamb_a = Eigen::Vector2d::Zero();
+  Eigen::Vector2d jamb_b = Eigen::Vector2d::Zero();
+};
+
 enum class FloorType : std::uint8_t { tile = 0, carpet = 1 };
 
 struct FloorRegion {
@@ -96,6 +104,7 @@ struct World {
   Surface floor;
   Surface ceiling;
   std::vector<WallPiece> walls;
+  std::vector<Doorway> doorways;  // in the order of the walls and their openings
   std::vector<Prism> prisms;
   std::vector<Cylinder> cylinders;
   std::vector<Person> people;

@@ -26,6 +26,7 @@ struct SimConfig {
   int odometry_queue = 64;
   int max_hits_per_column = 64;
   double near_miss_m = 0.03;
+  double door_visit_reach_m = 0.15;
 };
 
 inline void describe_odometry_noise(ConfigVisitor& v, const char* floor, OdometryNoiseConfig& c) {
@@ -49,6 +50,7 @@ inline void describe(ConfigVisitor& v, SimConfig& c) {
   v.integer_field("odometry_queue", c.odometry_queue, {1, 100000, "", "Odometry readings the simulator holds until read; when full the oldest is dropped and counted."});
   v.integer_field("max_hits_per_column", c.max_hits_per_column, {4, 1024, "", "Surfaces the renderer keeps per image column (nearest first); more are counted and dropped."});
   v.number("near_miss_m", c.near_miss_m, {0.0, 0.5, "m", "A near miss (report.json near_misses): the robot's disc comes within this of a static obstacle and moves 2 cm farther clear again without touching it. An evaluation figure, not a model of the robot; 0 counts none."});
+  v.number("door_visit_reach_m", c.door_visit_reach_m, {0.0, 2.0, "m", "A door visit (report.json door_visits): the robot's centre comes within its radius plus this of a doorway (the gap between the jambs of a world's opening that reaches the floor) and leaves again; each keeps the least clearance of the disc from a static obstacle meanwhile, and whether the robot crossed the door's line. Contacts and near misses are the tail of that spread, a few an hour; the clearances of every visit compare runs with fewer of them. An evaluation figure, not a model of the robot; 0 counts none."});
   v.end_section();
 }
 
