@@ -283,6 +283,8 @@ void write_counters(report::JsonWriter& json, const stack::Stack& stack) {
       .unsigned_integer("goal_timeouts", e.goal_timeouts)
       .unsigned_integer("net_progress_timeouts", e.net_progress_timeouts)
       .unsigned_integer("blocked_plan_limits", e.blocked_plan_limits)
+      .unsigned_integer("plan_reversals", e.plan_reversals)
+      .unsigned_integer("reversal_limits", e.reversal_limits)
       .unsigned_integer("safety_stops", e.safety_stops)
       .unsigned_integer("scan_guard_stops", e.scan_guard_stops)
       .unsigned_integer("turns_to_face_plan", e.turns_to_face_plan)

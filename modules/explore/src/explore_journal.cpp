@@ -35,6 +35,8 @@ const char* to_string(ExploreEventKind kind) {
     case ExploreEventKind::door_standoff: return "door_standoff";
     case ExploreEventKind::gap_shut: return "gap_shut";
     case ExploreEventKind::shut_gaps_lifted: return "shut_gaps_lifted";
+    case ExploreEventKind::plan_reversed: return "plan_reversed";
+    case ExploreEventKind::reversed_too_often: return "reversed_too_often";
   }
   return "?";
 }

@@ -376,6 +376,11 @@ void Explorer::check_plan(const ExploreInput& input) {
       if (!by_passers_by) gaps_.blocked(map_, plan_, k, position_of(input.pose));
       if (replan(input)) {
         gaps_.forget_blocked();
+        if (reversed_too_often(input)) {
+          ++counters_.reversal_limits;
+          note(ExploreEventKind::reversed_too_often, input);
+          goal_failed(input);
+        }
         return;
       }
       shut_gap(input);
@@ -437,6 +442,32 @@ void Explorer::note_plan_length(const ExploreInput& input) {
 bool Explorer::blocked_too_often() const {
   const int limit = params_.explore.max_blocked_plans;
   return limit > 0 && state_ != ExploreState::returning && blocked_plans_ >= limit;
+}
+
+// Two ways to a goal that views block in turn (a door the robot cannot pass, gaps in a blank
+// wall) turn the robot about at each block: at 8 degrees a second each half turn costs 20 s,
+// and the next block undoes it. Counts the replacements that lead back; the way back is
+// never given up so.
+bool Explorer::reversed_too_often(const ExploreInput& input) {
+  const int limit = params_.explore.max_plan_reversals;
+  if (limit <= 0 || !leads_back(input.pose)) return false;
+  ++plan_reversals_;
+  ++counters_.plan_reversals;
+  note(ExploreEventKind::plan_reversed, input);
+  return state_ != ExploreState::returning && plan_reversals_ >= limit;
+}
+
+// Whether the plan leaves the robot more than plan_reversal_deg off its heading, judged at
+// its first waypoint a lookahead away (the nearest lie within the robot's own cell).
+bool Explorer::leads_back(const core::Pose2& pose) const {
+  const Eigen::Vector2d position = position_of(pose);
+  for (const Eigen::Vector2d& waypoint : plan_.waypoints) {
+    const Eigen::Vector2d ahead = waypoint - position;
+    if (ahead.norm() < params_.explore.lookahead_m) continue;
+    const double off = core::wrap_angle(std::atan2(ahead.y(), ahead.x()) - pose.theta);
+    return std::abs(off) > core::degrees_to_radians(params_.explore.plan_reversal_deg);
+  }
+  return false;
 }
 
 // A passer-by has walked on within seconds; a plan that stays blocked longer is blocked by
@@ -521,6 +552,7 @@ void Explorer::begin_pursuit(const ExploreInput& input) {
   nearest_remaining_m_ = std::numeric_limits<double>::infinity();
   nearest_remaining_time_s_ = input.time_s;
   blocked_plans_ = 0;
+  plan_reversals_ = 0;
 }
 
 void Explorer::begin_walker_waits() {

@@ -1201,6 +1201,74 @@ TEST(Explorer, ARobotGoingBackAndForthBetweenTwoRoutesFailsWithoutNetProgress) {
   }
 }
 
+// The same two routes: after the first detour each block sends the robot back the way it
+// came. With max_plan_reversals the goal fails at that many plans that lead back; without,
+// the robot is still turning about when the test ends.
+TEST(Explorer, AGoalWhoseBlockedPlansKeepLeadingBackFailsAtTheLimit) {
+  for (const int limit : {2, 0}) {
+    GapThatComesAndGoes scene;
+    ExploreParams params = gap_chase_params();
+    params.explore.max_plan_reversals = limit;
+    Explorer explorer(params);
+    const double failed_s = chase_the_gap(explorer, scene, 240.0);
+    EXPECT_EQ(explorer.counters().goals_reached, 0U) << limit;
+    EXPECT_EQ(explorer.counters().stuck, 0U) << limit;
+    if (limit == 0) {
+      EXPECT_LT(failed_s, 0.0);
+      EXPECT_GT(explorer.counters().replans, 4U);  // it went back and forth all the while
+      EXPECT_EQ(journaled(explorer, ExploreEventKind::plan_reversed), 0U);
+      continue;
+    }
+    EXPECT_GT(failed_s, 0.0);
+    EXPECT_LT(failed_s, 60.0);
+    EXPECT_EQ(explorer.counters().plan_reversals, 2U);
+    EXPECT_EQ(explorer.counters().reversal_limits, 1U);
+    EXPECT_EQ(explorer.counters().goal_failures, 1U);
+    std::size_t limit_at = explorer.journal().size();
+    for (std::size_t i = 0; i < explorer.journal().size(); ++i) {
+      if (explorer.journal()[i].kind == ExploreEventKind::reversed_too_often) limit_at = i;
+    }
+    ASSERT_LT(limit_at + 1, explorer.journal().size());
+    EXPECT_EQ(explorer.journal()[limit_at - 1].kind, ExploreEventKind::plan_reversed);
+    EXPECT_EQ(explorer.journal()[limit_at + 1].kind, ExploreEventKind::goal_failed);
+  }
+}
+
+// A block straight ahead in open floor: the new plan turns aside round it, which is no
+// reversal, and the goal is reached even with a limit of one.
+TEST(Explorer, APlanThatTurnsAsideRoundABlockIsNoReversal) {
+  TestGrid grid(100, 60, CellState::free);
+  grid.walls();
+  grid.fill(80, 1, 99, 59, CellState::unknown);
+  ExploreParams params = gap_chase_params();
+  params.explore.max_plan_reversals = 1;
+  Explorer explorer(params);
+  core::Pose2 pose{1.0, 3.0, 0.0};
+  explorer.step(input_at(grid.view(), pose.x, pose.y, pose.theta, 0.0, true));
+  std::vector<Eigen::Vector2d> planned = plan_of(explorer);
+  std::vector<Eigen::Vector2d> plan = planned;
+  double plan_since_s = 0.0;
+  bool blocked = false;
+  for (double t = 0.1; t < 120.0 && explorer.counters().goals_reached == 0; t += 0.1) {
+    const bool block_now = !blocked && pose.x > 2.5;
+    if (block_now) grid.fill(38, 22, 41, 39, CellState::occupied);  // across the way, 1.2-1.5 m ahead
+    blocked = blocked || block_now;
+    explorer.step(input_at(grid.view(), pose.x, pose.y, pose.theta, t, block_now));
+    if (plan_of(explorer) != planned) {
+      planned = plan_of(explorer);
+      plan = planned;
+      plan.insert(plan.begin(), Eigen::Vector2d(pose.x, pose.y));
+      plan_since_s = t;
+    }
+    pose = along(plan, 0.12 * (t - plan_since_s));
+  }
+  EXPECT_TRUE(blocked);
+  EXPECT_GE(explorer.counters().replans, 1U);
+  EXPECT_EQ(explorer.counters().plan_reversals, 0U);
+  EXPECT_EQ(explorer.counters().goal_failures, 0U);
+  EXPECT_EQ(explorer.counters().goals_reached, 1U);
+}
+
 // The same two routes: each view blocks the plan through the gap or the one round it. With
 // max_blocked_plans the goal fails at that many blocked plans, long before its time limit.
 TEST(Explorer, AGoalWhosePlansKeepBeingBlockedFailsAtTheLimit) {

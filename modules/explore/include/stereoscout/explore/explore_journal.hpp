@@ -31,7 +31,7 @@ enum class ExploreEventKind : std::uint8_t {
   goal_timeout,      // pursued longer than its plans' driving time allows (goal_time_factor)
   no_net_progress,   // no nearer to it than ever before, along any plan, for net_progress_timeout_s
   blocked_too_often, // its plans were found blocked max_blocked_plans times
-  goal_failed,       // the goal is given up (after no_plan, stuck, goal_timeout, no_net_progress or blocked_too_often)
+  goal_failed,       // the goal is given up (after no_plan, stuck, goal_timeout, no_net_progress, blocked_too_often or reversed_too_often)
   goal_blacklisted,  // ... for blacklist_hold_s (0: for good): it failed goal_failures_before_blacklist times
   safety_stop,       // the next stretch would touch an occupied cell
   backing_to_see,    // ... a person's old trace, where the camera sees no floor: backing off before the look
@@ -50,6 +50,8 @@ enum class ExploreEventKind : std::uint8_t {
   door_standoff,     // at the door's standoff point (explore.door_standoff_m): turning to face the door
   gap_shut,          // a goal failed at a gap shut from near that the robot never drove through (shut_gap_hold_s)
   shut_gaps_lifted,  // before concluding "explored" or "no way back"
+  plan_reversed,     // a blocked plan's replacement leads back, more than plan_reversal_deg off the heading
+  reversed_too_often,  // max_plan_reversals of its plans did (the goal fails)
 };
 const char* to_string(ExploreEventKind kind);
 

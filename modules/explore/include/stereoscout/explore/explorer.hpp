@@ -101,6 +101,8 @@ struct ExploreCounters {
   std::uint64_t goal_timeouts = 0;    // pursued longer than goal_time_factor allows
   std::uint64_t net_progress_timeouts = 0;  // no nearer than ever before for net_progress_timeout_s
   std::uint64_t blocked_plan_limits = 0;    // goals failed for plans blocked max_blocked_plans times
+  std::uint64_t plan_reversals = 0;         // blocked plans replaced by one leading back (plan_reversal_deg)
+  std::uint64_t reversal_limits = 0;        // goals failed for max_plan_reversals of them
   std::uint64_t safety_stops = 0;
   std::uint64_t scan_guard_stops = 0;  // holds for the latest scan's obstacles, the grid clear there (no look)
   std::uint64_t turns_to_face_plan = 0;  // ticks turning to face the plan instead of a safety stop
@@ -166,6 +168,8 @@ class Explorer {
   bool blocked_by_passers_by(const ExploreInput& input, const Eigen::Vector2i& cell) const;
   bool may_wait_for_walkers(const ExploreInput& input);
   bool blocked_too_often() const;
+  bool leads_back(const core::Pose2& pose) const;
+  bool reversed_too_often(const ExploreInput& input);
   void stop_waiting_for_walkers(double time_s);
   void begin_walker_waits();
   void hold_for_walker(const ExploreInput& input, const Eigen::Vector2i& blocked_cell);
@@ -289,6 +293,7 @@ class Explorer {
   double nearest_remaining_m_ = 0.0;
   double nearest_remaining_time_s_ = 0.0;
   int blocked_plans_ = 0;  // this goal's plans found blocked (max_blocked_plans)
+  int plan_reversals_ = 0;  // ... and replaced by one leading back (max_plan_reversals)
   // Plans kept for passers-by (wait_for_walkers): the time spent so on this goal (or the way back).
   bool waiting_for_walkers_ = false;
   double walker_wait_since_s_ = 0.0;
