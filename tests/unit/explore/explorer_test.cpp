@@ -1175,17 +1175,25 @@ ExploreParams gap_chase_params() {
   return params;
 }
 
+// One chase of the gap that comes and goes, for 240 s, with the given settings.
+struct GapChase {
+  explicit GapChase(const ExploreParams& params) : explorer(params), failed_s(chase_the_gap(explorer, scene, 240.0)) {}
+  GapThatComesAndGoes scene;
+  Explorer explorer;
+  double failed_s;  // when the goal failed, or -1
+};
+
 // Progress along each new plan resets the stuck timer, and a goal's time limit grows with its
 // longest plan: a robot going back and forth between two routes comes no nearer to its goal
 // and would go on to its time limit. With net_progress_timeout_s it fails after that long
 // without getting nearer than before; without it, it is still going when the test ends.
 TEST(Explorer, ARobotGoingBackAndForthBetweenTwoRoutesFailsWithoutNetProgress) {
   for (const double timeout_s : {30.0, 0.0}) {
-    GapThatComesAndGoes scene;
     ExploreParams params = gap_chase_params();
     params.explore.net_progress_timeout_s = timeout_s;
-    Explorer explorer(params);
-    const double failed_s = chase_the_gap(explorer, scene, 240.0);
+    GapChase chase(params);
+    const Explorer& explorer = chase.explorer;
+    const double failed_s = chase.failed_s;
     EXPECT_GT(explorer.counters().replans, 4U) << timeout_s;  // it went back and forth
     EXPECT_EQ(explorer.counters().stuck, 0U) << timeout_s;
     EXPECT_EQ(explorer.counters().goals_reached, 0U) << timeout_s;
@@ -1201,16 +1209,15 @@ TEST(Explorer, ARobotGoingBackAndForthBetweenTwoRoutesFailsWithoutNetProgress) {
   }
 }
 
-// The same two routes: after the first detour each block sends the robot back the way it
-// came. With max_plan_reversals the goal fails at that many plans that lead back; without,
+// The same two routes: each block sends the robot back the way it came. With max_plan_reversals the goal fails at that many plans that lead back; without,
 // the robot is still turning about when the test ends.
 TEST(Explorer, AGoalWhoseBlockedPlansKeepLeadingBackFailsAtTheLimit) {
   for (const int limit : {2, 0}) {
-    GapThatComesAndGoes scene;
     ExploreParams params = gap_chase_params();
     params.explore.max_plan_reversals = limit;
-    Explorer explorer(params);
-    const double failed_s = chase_the_gap(explorer, scene, 240.0);
+    GapChase chase(params);
+    const Explorer& explorer = chase.explorer;
+    const double failed_s = chase.failed_s;
     EXPECT_EQ(explorer.counters().goals_reached, 0U) << limit;
     EXPECT_EQ(explorer.counters().stuck, 0U) << limit;
     if (limit == 0) {
