@@ -1209,8 +1209,9 @@ TEST(Explorer, ARobotGoingBackAndForthBetweenTwoRoutesFailsWithoutNetProgress) {
   }
 }
 
-// The same two routes: each block sends the robot back the way it came. With max_plan_reversals the goal fails at that many plans that lead back; without,
-// the robot is still turning about when the test ends.
+// The same two routes: each block sends the robot back the way it came. With
+// max_plan_reversals the goal fails at that many plans that lead back; without, the robot is
+// still turning about when the test ends.
 TEST(Explorer, AGoalWhoseBlockedPlansKeepLeadingBackFailsAtTheLimit) {
   for (const int limit : {2, 0}) {
     ExploreParams params = gap_chase_params();
