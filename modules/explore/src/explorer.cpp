@@ -458,16 +458,16 @@ bool Explorer::reversed_too_often(const ExploreInput& input) {
 }
 
 // Whether the plan leaves the robot more than plan_reversal_deg off its heading, judged at
-// its first waypoint a lookahead away (the nearest lie within the robot's own cell).
+// its first waypoint a lookahead away (the nearest lie within the robot's own cell). A plan
+// that ends nearer gives no direction.
 bool Explorer::leads_back(const core::Pose2& pose) const {
+  if (plan_.empty()) return false;
   const Eigen::Vector2d position = position_of(pose);
-  for (const Eigen::Vector2d& waypoint : plan_.waypoints) {
-    const Eigen::Vector2d ahead = waypoint - position;
-    if (ahead.norm() < params_.explore.lookahead_m) continue;
-    const double off = core::wrap_angle(std::atan2(ahead.y(), ahead.x()) - pose.theta);
-    return std::abs(off) > core::degrees_to_radians(params_.explore.plan_reversal_deg);
-  }
-  return false;
+  const double lookahead_m = params_.explore.lookahead_m;
+  const Eigen::Vector2d ahead = follower_.point_ahead(plan_, position, lookahead_m) - position;
+  if (ahead.norm() < lookahead_m) return false;
+  const double off = core::wrap_angle(std::atan2(ahead.y(), ahead.x()) - pose.theta);
+  return std::abs(off) > core::degrees_to_radians(params_.explore.plan_reversal_deg);
 }
 
 // A passer-by has walked on within seconds; a plan that stays blocked longer is blocked by
